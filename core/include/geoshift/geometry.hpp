@@ -1,0 +1,39 @@
+#pragma once
+// Basic differential quantities of a triangle mesh: lengths, normals, areas, bounds.
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "geoshift/mesh.hpp"
+
+namespace geoshift {
+
+// Mean length over all edges (each undirected edge once). The unit of every spatial parameter.
+// Throws InputError for a mesh with no edge of positive length.
+double averageEdgeLength(const Mesh& mesh);
+
+// Unit normal per face (zero vector for a face of zero area).
+std::vector<Vec3> faceNormals(const Mesh& mesh);
+std::vector<double> faceAreas(const Mesh& mesh);
+
+// Angle-weighted vertex normals (Thürmer–Wüthrich); zero for isolated vertices.
+std::vector<Vec3> vertexNormals(const Mesh& mesh);
+
+// Mixed Voronoi areas (Meyer et al. 2003, as MeshLab: ALGORITHMS.md §6); they sum to the total area.
+std::vector<double> mixedVoronoiAreas(const Mesh& mesh);
+
+// Axis-aligned bounds of the positions (empty box for none).
+Eigen::AlignedBox3d boundingBox(const std::vector<Vec3>& positions);
+
+// Uniform scale and translation that maps the bounding box into the unit cube [0,1]^3 (longest side 1,
+// centred); apply with normalized = scale * p + offset.
+struct Similarity {
+  double scale = 1.0;
+  Vec3 offset = Vec3::Zero();
+  Vec3 apply(const Vec3& p) const { return scale * p + offset; }
+};
+Similarity unitCubeTransform(const std::vector<Vec3>& positions);
+// Applies unitCubeTransform in place and returns it.
+Similarity normalizeToUnitCube(Mesh& mesh);
+
+}  // namespace geoshift

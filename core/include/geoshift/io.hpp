@@ -1,0 +1,68 @@
+#pragma once
+// Reading and writing mesh files: glTF 2.0 (.gltf/.glb) through tinygltf, OBJ through tinyobjloader,
+// OFF. Format chosen by file extension. Writing back into the file's own format keeps everything
+// that is not geometry as it was; writes are atomic (temporary file, then rename), so a failure
+// never leaves a partial output.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geoshift/mesh.hpp"
+
+namespace geoshift {
+
+enum class FileFormat { Gltf, Glb, Obj, Off };
+
+// Throws InputError naming the path when the extension is none of .gltf .glb .obj .off.
+FileFormat formatFromPath(const std::string& path);
+
+// A per-vertex channel to write beside the geometry (glTF: accessor "_NAME"; OBJ/OFF: not stored,
+// reported as a warning).
+struct ExtraAttribute {
+  std::string name;  // e.g. "_CURVATURE"; glTF custom attributes must start with '_'
+  int dim = 1;
+  std::vector<double> values;  // positions.size() * dim
+};
+
+// One triangle mesh of a file, in the file's own vertex order. glTF: all TRIANGLES primitives that
+// share one POSITION accessor form one part.
+struct MeshPart {
+  std::string label;                      // for messages: "mesh 0 'Duck' primitive 0"
+  std::vector<Vec3> positions;            // local coordinates
+  std::vector<Face> faces;                // triangles (non-indexed input gets 0..n-1)
+  std::vector<Vec3> normals;              // empty when the file has none
+  std::vector<Eigen::Vector4d> colors;    // RGBA in [0,1] (linear for glTF); empty when none
+  std::vector<Eigen::Matrix4d> instances; // world transform of every node that draws it (identity for OBJ/OFF)
+  std::vector<ExtraAttribute> extras;     // written on save; read back from glTF "_NAME" float accessors
+};
+
+struct DocumentSource;  // the parsed file, kept for writing back (tinygltf model, OBJ text, ...)
+
+struct Document {
+  std::string path;
+  FileFormat format = FileFormat::Obj;
+  std::vector<MeshPart> parts;
+  std::vector<std::string> warnings;  // content passed through untouched, and why
+  std::shared_ptr<DocumentSource> source;
+};
+
+// Throws InputError naming the file and what/where (mesh, primitive, accessor, line) on unreadable
+// or unsupported content: Draco/meshopt compression, sparse accessors, non-finite values, indices out
+// of range. Points/lines primitives are kept untouched and reported in `warnings`. A file with no
+// triangle is an error.
+Document readDocument(const std::string& path);
+
+// Writes the document; positions, normals, colors and extras of each part replace the file's.
+// Same format as read: everything else is kept (materials, textures, nodes, extras, OBJ groups and
+// texture coordinates). Another format: geometry, normals and colors only, with a warning returned.
+// Throws InputError (nothing written) when a part's array sizes do not match its positions.
+std::vector<std::string> writeDocument(const Document& document, const std::string& path);
+
+// All parts of the document in world space (every instance), concatenated into one soup.
+TriangleSoup worldSoup(const Document& document);
+// One part in its local coordinates.
+TriangleSoup partSoup(const MeshPart& part);
+
+}  // namespace geoshift

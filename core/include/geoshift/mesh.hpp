@@ -1,0 +1,166 @@
+#pragma once
+// Triangle mesh with half-edge connectivity, built from indexed triangles.
+//
+// Half-edges are implicit in the face corners: half-edge h = 3f + k runs from face(f)[k] to
+// face(f)[(k+1) % 3], so next/prev/face are arithmetic and only the twins are stored. Faces are
+// counter-clockwise seen from outside. After construction every vertex has a single fan of faces
+// (non-manifold input is split into manifold pieces) and every edge at most two faces.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace geoshift {
+
+using Vec3 = Eigen::Vector3d;
+using Face = std::array<int, 3>;
+
+// What a caller passes in: positions and triangles in the caller's own vertex layout.
+struct TriangleSoup {
+  std::vector<Vec3> positions;
+  std::vector<Face> faces;
+};
+
+// What construction found and repaired. Every count has a message in `messages` that names the
+// offending indices (the first few of them, with the total).
+struct BuildReport {
+  int inputVertices = 0;
+  int inputFaces = 0;
+  int weldedVertices = 0;          // caller vertices merged into an earlier coincident one
+  int repeatedIndexFaces = 0;      // dropped: a face that uses one vertex twice
+  int zeroAreaFaces = 0;           // dropped: collinear corners
+  std::vector<int> droppedFaces;   // input face indices of the two kinds above
+  int nonManifoldEdges = 0;        // edges with more than two faces or inconsistent orientation: cut
+  int nonManifoldVertices = 0;     // vertices whose faces form several fans: split
+  int splitVertexCopies = 0;       // vertices added by that split
+  int isolatedVertices = 0;        // referenced by no face: kept, left untouched by filters
+  std::vector<std::string> messages;
+
+  bool clean() const {
+    return repeatedIndexFaces == 0 && zeroAreaFaces == 0 && nonManifoldEdges == 0 &&
+           nonManifoldVertices == 0;
+  }
+};
+
+class Mesh {
+ public:
+  Mesh() = default;
+
+  // Builds connectivity from positions and triangles as given (no welding).
+  // Throws InputError when there is no vertex or no face, a coordinate is NaN/Inf (naming the
+  // vertex), or an index is out of range (naming the face and the corner). Degenerate faces are
+  // dropped and non-manifold configurations split, as counted in `report` when given.
+  Mesh(std::vector<Vec3> positions, const std::vector<Face>& faces, BuildReport* report = nullptr);
+
+  int vertexCount() const { return static_cast<int>(positions_.size()); }
+  int faceCount() const { return static_cast<int>(faces_.size()); }
+  int halfedgeCount() const { return 3 * faceCount(); }
+
+  const Vec3& position(int v) const { return positions_[v]; }
+  Vec3& position(int v) { return positions_[v]; }
+  const std::vector<Vec3>& positions() const { return positions_; }
+  // Geometry may change; connectivity may not.
+  std::vector<Vec3>& positions() { return positions_; }
+  const Face& face(int f) const { return faces_[f]; }
+  const std::vector<Face>& faces() const { return faces_; }
+  // The caller's face index of mesh face f (faces may have been dropped).
+  int inputFace(int f) const { return inputFace_[f]; }
+
+  // --- half-edges ---
+  static int faceOf(int h) { return h / 3; }
+  static int next(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
+  static int prev(int h) { return h % 3 == 0 ? h + 2 : h - 1; }
+  int tail(int h) const { return faces_[h / 3][h % 3]; }
+  int head(int h) const { return faces_[h / 3][(h % 3 + 1) % 3]; }
+  // The opposite half-edge, or -1 on the boundary.
+  int twin(int h) const { return twin_[h]; }
+  bool isBoundaryHalfedge(int h) const { return twin_[h] < 0; }
+
+  // One outgoing half-edge of v; for a boundary vertex the one on the boundary (twin -1), so that
+  // a counter-clockwise walk with ccwOutgoing meets every face. -1 for an isolated vertex.
+  int halfedge(int v) const { return vertexHalfedge_[v]; }
+  bool isIsolated(int v) const { return vertexHalfedge_[v] < 0; }
+  bool isBoundaryVertex(int v) const {
+    return vertexHalfedge_[v] >= 0 && twin_[vertexHalfedge_[v]] < 0;
+  }
+  // Next outgoing half-edge counter-clockwise around tail(h), or -1 past the last boundary face.
+  int ccwOutgoing(int h) const { return twin_[prev(h)]; }
+
+  // Calls f(h) for every outgoing half-edge of v, counter-clockwise, starting at halfedge(v).
+  template <class F>
+  void forEachOutgoing(int v, F&& f) const {
+    const int start = vertexHalfedge_[v];
+    if (start < 0) return;
+    int h = start;
+    do {
+      f(h);
+      h = ccwOutgoing(h);
+    } while (h >= 0 && h != start);
+  }
+  // Neighbouring vertices of v, counter-clockwise; on the boundary both end neighbours included.
+  std::vector<int> neighbors(int v) const;
+  int valence(int v) const { return static_cast<int>(neighbors(v).size()); }
+
+  // Boundary loops as vertex sequences, each following its boundary half-edges.
+  std::vector<std::vector<int>> boundaryLoops() const;
+
+  // The vertex a split copy was made from (itself for every other vertex).
+  int originalVertex(int v) const { return originalVertex_[v]; }
+
+ private:
+  std::vector<Vec3> positions_;
+  std::vector<Face> faces_;
+  std::vector<int> inputFace_;
+  std::vector<int> twin_;
+  std::vector<int> vertexHalfedge_;
+  std::vector<int> originalVertex_;
+};
+
+// --- welding -----------------------------------------------------------------------------------
+
+struct WeldOptions {
+  // Positions closer than this are merged; 0 merges only exactly equal positions (what glTF's
+  // seam splits produce). Absolute, in the mesh's units.
+  double tolerance = 0.0;
+};
+
+struct Weld {
+  std::vector<Vec3> positions;   // one per welded vertex, the first caller vertex's position
+  std::vector<int> vertexOf;     // caller vertex -> welded vertex
+  int mergedCount = 0;
+};
+
+// Merges coincident vertices. Deterministic: welded vertices are numbered in order of their
+// first caller vertex. Throws InputError on NaN/Inf coordinates (naming the vertex).
+Weld weld(const std::vector<Vec3>& positions, const WeldOptions& options = {});
+
+struct MeshBuildOptions {
+  bool weld = true;
+  WeldOptions weldOptions;
+};
+
+// A mesh built from a caller's soup, with the map back to the caller's vertex layout so that
+// per-vertex results can be written back one for one.
+struct MeshBuild {
+  Mesh mesh;
+  std::vector<int> vertexOf;  // caller vertex -> mesh vertex
+  BuildReport report;
+};
+
+// Validates the soup (InputError naming face/index/vertex on bad indices, NaN/Inf, empty input),
+// welds, then builds the mesh. Degenerate and non-manifold configurations are repaired and reported.
+MeshBuild buildMesh(const TriangleSoup& soup, const MeshBuildOptions& options = {});
+
+// Per-mesh-vertex values -> per-caller-vertex values (rows of `dim` numbers each).
+std::vector<double> toCallerLayout(const std::vector<double>& meshValues, int dim,
+                                   const std::vector<int>& vertexOf);
+// Per-caller-vertex values -> per-mesh-vertex values: the mean of the caller vertices that were
+// welded together (re-normalised when `unitVectors`). Mesh vertices with no caller vertex (split
+// copies) take the value of their original vertex.
+std::vector<double> toMeshLayout(const std::vector<double>& callerValues, int dim,
+                                 const std::vector<int>& vertexOf, const Mesh& mesh,
+                                 bool unitVectors = false);
+
+}  // namespace geoshift

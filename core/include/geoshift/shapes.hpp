@@ -1,0 +1,21 @@
+#pragma once
+// Procedural meshes for tests, benchmarks and demos. All faces counter-clockwise seen from outside.
+#include "geoshift/mesh.hpp"
+
+namespace geoshift::shapes {
+
+TriangleSoup tetrahedron();                    // regular, circumradius 1, centred at the origin
+TriangleSoup cube();                           // [-1,1]^3, 8 vertices, 12 faces (welded)
+// n x n vertices over [0,1]^2 in the z = 0 plane, jitter (fraction of the spacing) applied to the
+// interior vertices with a fixed seed; one boundary loop.
+TriangleSoup grid(int n, double jitter = 0.0, unsigned seed = 1);
+// Subdivided icosahedron on a sphere of the given radius: 10 * 4^level + 2 vertices.
+TriangleSoup icosphere(int level, double radius = 1.0);
+// Open prism cylinder around z with `sides` sides and `rings` rings of vertices over [0, height].
+TriangleSoup cylinder(int sides, int rings, double radius = 1.0, double height = 1.0);
+// Torus around z: major radius R, minor radius r.
+TriangleSoup torus(int majorSegments, int minorSegments, double R = 1.0, double r = 0.35);
+// The same soup with every face's corners given their own vertex (like a glTF with split seams).
+TriangleSoup unwelded(const TriangleSoup& soup);
+
+}  // namespace geoshift::shapes

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Installs whatever is missing for building and testing geoshift on Debian 12, then builds.
+# Idempotent: when nothing is missing it only checks, and the builds are incremental.
+#   scripts/bootstrap.sh [--no-build] [--no-wasm] [--no-browser]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=1 wasm=1 browser=1
+for a in "$@"; do
+  case "$a" in
+    --no-build) build=0 ;;
+    --no-wasm) wasm=0 ;;
+    --no-browser) browser=0 ;;
+    *) echo "bootstrap: unknown option $a" >&2; exit 2 ;;
+  esac
+done
+
+log() { printf '[bootstrap] %s\n' "$*"; }
+
+# --- system packages -------------------------------------------------------------------------
+pkgs=(cmake g++ make pkg-config libeigen3-dev libtinygltf-dev nlohmann-json3-dev catch2
+      libtinyobjloader-dev libcli11-dev libbenchmark-dev)
+[ "$wasm" = 1 ] && pkgs+=(emscripten)
+[ "$browser" = 1 ] && pkgs+=(chromium)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  log "installing Debian packages: ${missing[*]}"
+  sudo=""
+  if [ "$(id -u)" != 0 ]; then
+    command -v sudo >/dev/null || { echo "bootstrap: need root or sudo to install ${missing[*]}" >&2; exit 1; }
+    sudo="sudo"
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+else
+  log "Debian packages present"
+fi
+
+# --- npm packages ----------------------------------------------------------------------------
+stamp=node_modules/.geoshift-lock
+if [ ! -f "$stamp" ] || ! cmp -s package-lock.json "$stamp"; then
+  log "npm ci"
+  npm ci --no-audit --no-fund --loglevel=error
+  cp package-lock.json "$stamp"
+else
+  log "npm packages present"
+fi
+
+[ "$build" = 1 ] || exit 0
+
+jobs=$(nproc 2>/dev/null || echo 2)
+
+# --- native build ----------------------------------------------------------------------------
+log "native build (build/native-release)"
+[ -f build/native-release/CMakeCache.txt ] || cmake --preset native-release >/dev/null
+cmake --build build/native-release -j "$jobs"
+
+# --- wasm build ------------------------------------------------------------------------------
+if [ "$wasm" = 1 ]; then
+  # Debian's emscripten runs its JS tools with the system node, which needs Debian's modules.
+  export NODE_PATH=/usr/share/nodejs
+  log "wasm build (build/wasm-release)"
+  [ -f build/wasm-release/CMakeCache.txt ] || emcmake cmake --preset wasm-release >/dev/null
+  cmake --build build/wasm-release -j "$jobs"
+fi
+log "ready"
