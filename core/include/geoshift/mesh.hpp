@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products are everywhere on meshes
 
 namespace geoshift {
 
@@ -139,6 +140,13 @@ Weld weld(const std::vector<Vec3>& positions, const WeldOptions& options = {});
 struct MeshBuildOptions {
   bool weld = true;
   WeldOptions weldOptions;
+
+  // Connectivity exactly as the caller gave it (hard edges stay split).
+  static MeshBuildOptions withoutWelding() {
+    MeshBuildOptions o;
+    o.weld = false;
+    return o;
+  }
 };
 
 // A mesh built from a caller's soup, with the map back to the caller's vertex layout so that

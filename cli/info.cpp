@@ -1,0 +1,71 @@
+// geoshift info FILE: what a mesh file holds and what the core makes of it.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "geoshift/geometry.hpp"
+
+namespace geoshift::cli {
+namespace {
+
+const char* formatName(FileFormat f) {
+  switch (f) {
+    case FileFormat::Gltf: return "glTF 2.0 (.gltf)";
+    case FileFormat::Glb: return "glTF 2.0 binary (.glb)";
+    case FileFormat::Obj: return "Wavefront OBJ";
+    case FileFormat::Off: return "OFF";
+  }
+  return "?";
+}
+
+void printPart(const Document& doc, const MeshPart& part) {
+  const MeshBuild b = buildPart(doc, part);
+  const Mesh& m = b.mesh;
+  const BuildReport& r = b.report;
+  const auto box = boundingBox(part.positions);
+  std::printf("%s\n", part.label.c_str());
+  std::printf("  vertices            %zu (%d after welding %d coincident)\n", part.positions.size(),
+              m.vertexCount() - r.splitVertexCopies, r.weldedVertices);
+  std::printf("  faces               %zu (%d kept)\n", part.faces.size(), m.faceCount());
+  std::printf("  average edge length %.6g\n", averageEdgeLength(m));
+  std::printf("  bounding box        (%.6g, %.6g, %.6g) - (%.6g, %.6g, %.6g), diagonal %.6g\n",
+              box.min().x(), box.min().y(), box.min().z(), box.max().x(), box.max().y(), box.max().z(),
+              box.diagonal().norm());
+  const auto loops = m.boundaryLoops();
+  std::printf("  boundary loops      %zu", loops.size());
+  if (!loops.empty()) {
+    std::printf(" (lengths");
+    for (size_t i = 0; i < loops.size() && i < 8; ++i) std::printf(" %zu", loops[i].size());
+    if (loops.size() > 8) std::printf(" ...");
+    std::printf(")");
+  }
+  std::printf("\n");
+  std::printf("  degenerate faces    %d (repeated index %d, zero area %d)\n",
+              r.repeatedIndexFaces + r.zeroAreaFaces, r.repeatedIndexFaces, r.zeroAreaFaces);
+  std::printf("  non-manifold        %d edges, %d vertices (split into %d extra)\n", r.nonManifoldEdges,
+              r.nonManifoldVertices, r.splitVertexCopies);
+  std::printf("  isolated vertices   %d\n", r.isolatedVertices);
+  std::string attrs = "POSITION";
+  if (!part.normals.empty()) attrs += ", NORMAL";
+  if (!part.colors.empty()) attrs += ", COLOR_0";
+  for (const ExtraAttribute& e : part.extras) attrs += ", " + e.name + " (" + std::to_string(e.dim) + ")";
+  std::printf("  attributes          %s\n", attrs.c_str());
+  std::printf("  instances           %zu\n", part.instances.size());
+}
+
+}  // namespace
+
+Command addInfo(CLI::App& app) {
+  auto file = std::make_shared<std::string>();
+  CLI::App* sub = app.add_subcommand("info", "Counts, average edge length, bounds, boundary loops, defects, attributes");
+  sub->add_option("FILE", *file, "mesh file (.gltf .glb .obj .off)")->required();
+  return {sub, [file] {
+            const Document doc = load(*file);
+            std::printf("file    %s\nformat  %s\nparts   %zu\n", file->c_str(), formatName(doc.format),
+                        doc.parts.size());
+            for (const MeshPart& part : doc.parts) printPart(doc, part);
+          }};
+}
+
+}  // namespace geoshift::cli

@@ -1,0 +1,39 @@
+// geoshift: command-line front end of the core. Thin: parses arguments, calls the library.
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "geoshift/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"geoshift: filters for signals on triangle meshes (glTF, OBJ, OFF)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "geoshift 0.1.0");
+  using namespace geoshift::cli;
+  const std::vector<Command> commands = {addInfo(app), addNoise(app), addSmooth(app),
+                                         addCurvature(app), addCompare(app)};
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (const Command& c : commands)
+      if (c.sub->parsed()) c.run();
+  } catch (const geoshift::InputError& e) {
+    std::cerr << "geoshift: error: " << e.what() << "\n";
+    return 1;
+  } catch (const geoshift::Cancelled&) {
+    std::cerr << "geoshift: cancelled; nothing written\n";
+    return 130;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "geoshift: error: out of memory; nothing written\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "geoshift: internal error: " << e.what() << "; nothing written\n";
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,401 @@
+#include "geoshift/mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <unordered_map>
+
+#include "geoshift/error.hpp"
+
+namespace geoshift {
+namespace {
+
+// "face 3 (1, 1, 2), face 9 (4, 5, 4) and 10 more": enough to find them, short enough to read.
+template <class Describe>
+std::string listSome(const std::vector<int>& items, Describe describe, size_t shown = 5) {
+  std::ostringstream s;
+  for (size_t i = 0; i < items.size() && i < shown; ++i) s << (i ? ", " : "") << describe(items[i]);
+  if (items.size() > shown) s << " and " << items.size() - shown << " more";
+  return s.str();
+}
+
+std::string faceText(int index, const Face& f) {
+  std::ostringstream s;
+  s << "face " << index << " (" << f[0] << ", " << f[1] << ", " << f[2] << ")";
+  return s.str();
+}
+
+void requireFinite(const std::vector<Vec3>& positions) {
+  for (size_t v = 0; v < positions.size(); ++v) {
+    const Vec3& p = positions[v];
+    if (!p.allFinite()) {
+      std::ostringstream s;
+      s << "vertex " << v << " has a non-finite coordinate (" << p.x() << ", " << p.y() << ", "
+        << p.z() << ")";
+      throw InputError(s.str());
+    }
+  }
+}
+
+void requireValidFaces(const std::vector<Face>& faces, size_t vertexCount) {
+  if (vertexCount == 0) throw InputError("empty mesh: no vertices");
+  if (faces.empty()) throw InputError("no triangles: the mesh has vertices but no faces");
+  for (size_t f = 0; f < faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int i = faces[f][k];
+      if (i < 0 || static_cast<size_t>(i) >= vertexCount) {
+        std::ostringstream s;
+        s << "face " << f << ", corner " << k << ": vertex index " << i << " is out of range ("
+          << vertexCount << " vertices)";
+        throw InputError(s.str());
+      }
+    }
+  }
+}
+
+// Twice the area is compared with the longest edge squared, so that the test is scale-free and
+// only rejects faces whose corners are collinear up to round-off (needles are kept).
+bool hasZeroArea(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double twiceArea = (b - a).cross(c - a).norm();
+  const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return !(twiceArea > 1e-12 * longest);
+}
+
+}  // namespace
+
+Mesh::Mesh(std::vector<Vec3> positions, const std::vector<Face>& faces, BuildReport* report)
+    : positions_(std::move(positions)) {
+  requireValidFaces(faces, positions_.size());
+  requireFinite(positions_);
+  BuildReport local;
+  BuildReport& r = report ? *report : local;
+
+  // --- degenerate faces: dropped, because no normal, angle or area is defined on them ---
+  std::vector<int> repeated, zeroArea;
+  faces_.reserve(faces.size());
+  inputFace_.reserve(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const Face& t = faces[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
+      repeated.push_back(static_cast<int>(f));
+    } else if (hasZeroArea(positions_[t[0]], positions_[t[1]], positions_[t[2]])) {
+      zeroArea.push_back(static_cast<int>(f));
+    } else {
+      faces_.push_back(t);
+      inputFace_.push_back(static_cast<int>(f));
+    }
+  }
+  auto describeInput = [&](int f) { return faceText(f, faces[f]); };
+  r.repeatedIndexFaces = static_cast<int>(repeated.size());
+  r.zeroAreaFaces = static_cast<int>(zeroArea.size());
+  r.droppedFaces = repeated;
+  r.droppedFaces.insert(r.droppedFaces.end(), zeroArea.begin(), zeroArea.end());
+  std::sort(r.droppedFaces.begin(), r.droppedFaces.end());
+  if (!repeated.empty())
+    r.messages.push_back("dropped " + std::to_string(repeated.size()) +
+                         " degenerate face(s) that use a vertex twice: " + listSome(repeated, describeInput));
+  if (!zeroArea.empty())
+    r.messages.push_back("dropped " + std::to_string(zeroArea.size()) +
+                         " degenerate face(s) of zero area: " + listSome(zeroArea, describeInput));
+  if (faces_.empty()) throw InputError("no valid triangles: all " + std::to_string(faces.size()) +
+                                       " faces are degenerate");
+
+  // --- twins: pair a->b with b->a; anything else on an edge is cut into boundary ---
+  const int nh = halfedgeCount();
+  twin_.assign(nh, -1);
+  std::vector<std::pair<std::uint64_t, int>> edges(nh);
+  for (int h = 0; h < nh; ++h) {
+    const auto a = static_cast<std::uint64_t>(tail(h)), b = static_cast<std::uint64_t>(head(h));
+    edges[h] = {std::min(a, b) << 32 | std::max(a, b), h};
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::pair<int, int>> badEdges;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    const size_t n = j - i;
+    if (n == 2 && tail(edges[i].second) == head(edges[i + 1].second)) {
+      twin_[edges[i].second] = edges[i + 1].second;
+      twin_[edges[i + 1].second] = edges[i].second;
+    } else if (n >= 2) {
+      // More than two faces, or two faces that disagree on orientation. Keeping one consistent
+      // pair keeps the surface connected through the most likely sheet; the rest become boundary.
+      badEdges.push_back({tail(edges[i].second), head(edges[i].second)});
+      for (size_t p = i; p < j; ++p) {
+        for (size_t q = p + 1; q < j; ++q) {
+          const int hp = edges[p].second, hq = edges[q].second;
+          if (twin_[hp] < 0 && twin_[hq] < 0 && tail(hp) == head(hq)) {
+            twin_[hp] = hq;
+            twin_[hq] = hp;
+            p = j;  // one pair only
+            break;
+          }
+        }
+      }
+    }
+    i = j;
+  }
+  r.nonManifoldEdges = static_cast<int>(badEdges.size());
+  if (!badEdges.empty()) {
+    std::vector<int> idx(badEdges.size());
+    for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<int>(i);
+    r.messages.push_back(
+        "cut " + std::to_string(badEdges.size()) +
+        " non-manifold edge(s) (more than two faces, or faces of opposite orientation): " +
+        listSome(idx, [&](int i) {
+          return "edge " + std::to_string(badEdges[i].first) + "-" + std::to_string(badEdges[i].second);
+        }));
+  }
+
+  // --- vertex fans: a vertex whose faces form several fans is split, one copy per extra fan ---
+  const int nv0 = vertexCount();
+  std::vector<int> outStart(nv0 + 1, 0), out(nh);
+  for (int h = 0; h < nh; ++h) ++outStart[tail(h) + 1];
+  for (int v = 0; v < nv0; ++v) outStart[v + 1] += outStart[v];
+  {
+    std::vector<int> fill(outStart.begin(), outStart.end() - 1);
+    for (int h = 0; h < nh; ++h) out[fill[tail(h)]++] = h;
+  }
+  vertexHalfedge_.assign(nv0, -1);
+  originalVertex_.resize(nv0);
+  for (int v = 0; v < nv0; ++v) originalVertex_[v] = v;
+  std::vector<char> visited(nh, 0);
+  std::vector<int> splitVertices;
+  std::vector<int> fan;
+  for (int v = 0; v < nv0; ++v) {
+    int fans = 0;
+    const int degree = outStart[v + 1] - outStart[v];
+    for (int i = outStart[v]; i < outStart[v + 1]; ++i) {
+      const int h = out[i];
+      if (visited[h]) continue;
+      // Rotate clockwise to the fan's first half-edge (a boundary one), or all the way round.
+      int start = h;
+      for (int steps = 0; steps < degree; ++steps) {
+        const int t = twin_[start];
+        if (t < 0) break;
+        const int cw = next(t);
+        if (cw == h) break;
+        start = cw;
+      }
+      fan.clear();
+      int g = start;
+      do {
+        visited[g] = 1;
+        fan.push_back(g);
+        g = ccwOutgoing(g);
+      } while (g >= 0 && g != start && static_cast<int>(fan.size()) <= degree);
+      int target = v;
+      if (fans > 0) {
+        target = vertexCount();
+        positions_.push_back(positions_[v]);
+        originalVertex_.push_back(v);
+        vertexHalfedge_.push_back(-1);
+        for (int e : fan) faces_[e / 3][e % 3] = target;
+      }
+      vertexHalfedge_[target] = start;
+      ++fans;
+    }
+    if (fans > 1) splitVertices.push_back(v);
+  }
+  r.nonManifoldVertices = static_cast<int>(splitVertices.size());
+  r.splitVertexCopies = vertexCount() - nv0;
+  if (!splitVertices.empty())
+    r.messages.push_back("split " + std::to_string(splitVertices.size()) +
+                         " non-manifold vertex(es) into one copy per fan of faces: " +
+                         listSome(splitVertices, [](int v) { return "vertex " + std::to_string(v); }));
+
+  std::vector<int> isolated;
+  for (int v = 0; v < nv0; ++v)
+    if (vertexHalfedge_[v] < 0) isolated.push_back(v);
+  r.isolatedVertices = static_cast<int>(isolated.size());
+  if (!isolated.empty())
+    r.messages.push_back("kept " + std::to_string(isolated.size()) +
+                         " isolated vertex(es) that no face uses; filters leave them as they are: " +
+                         listSome(isolated, [](int v) { return "vertex " + std::to_string(v); }));
+}
+
+std::vector<int> Mesh::neighbors(int v) const {
+  std::vector<int> result;
+  int last = -1;
+  forEachOutgoing(v, [&](int h) {
+    result.push_back(head(h));
+    last = h;
+  });
+  // On the boundary the last face's other edge leads to the second boundary neighbour.
+  if (last >= 0 && twin_[prev(last)] < 0) result.push_back(tail(prev(last)));
+  return result;
+}
+
+std::vector<std::vector<int>> Mesh::boundaryLoops() const {
+  std::vector<std::vector<int>> loops;
+  std::vector<char> seen(halfedgeCount(), 0);
+  for (int h0 = 0; h0 < halfedgeCount(); ++h0) {
+    if (twin_[h0] >= 0 || seen[h0]) continue;
+    std::vector<int> loop;
+    int h = h0;
+    while (h >= 0 && !seen[h]) {
+      seen[h] = 1;
+      loop.push_back(tail(h));
+      // After fan splitting each boundary vertex has exactly one outgoing boundary half-edge.
+      h = vertexHalfedge_[head(h)];
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+// --- welding ---------------------------------------------------------------------------------
+
+namespace {
+
+struct KeyHash {
+  size_t operator()(const std::array<std::int64_t, 3>& k) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (auto x : k) {
+      h ^= static_cast<std::uint64_t>(x) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+      h *= 1099511628211ull;
+    }
+    return static_cast<size_t>(h);
+  }
+};
+
+std::int64_t bitsOf(double x) {
+  if (x == 0.0) x = 0.0;  // -0 and +0 are the same position
+  std::int64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+}  // namespace
+
+Weld weld(const std::vector<Vec3>& positions, const WeldOptions& options) {
+  requireFinite(positions);
+  Weld w;
+  w.vertexOf.resize(positions.size());
+  std::unordered_map<std::array<std::int64_t, 3>, int, KeyHash> cells;
+  cells.reserve(positions.size());
+  const double tol = options.tolerance;
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const Vec3& p = positions[i];
+    int found = -1;
+    if (tol <= 0) {
+      auto [it, inserted] = cells.try_emplace({bitsOf(p.x()), bitsOf(p.y()), bitsOf(p.z())},
+                                              static_cast<int>(w.positions.size()));
+      if (!inserted) found = it->second;
+    } else {
+      // Grid of cell size tol: any partner within tol lies in one of the 27 surrounding cells.
+      // A cell keeps the first welded vertex that fell into it.
+      const std::array<std::int64_t, 3> c = {static_cast<std::int64_t>(std::floor(p.x() / tol)),
+                                             static_cast<std::int64_t>(std::floor(p.y() / tol)),
+                                             static_cast<std::int64_t>(std::floor(p.z() / tol))};
+      double best = tol;
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            auto it = cells.find({c[0] + dx, c[1] + dy, c[2] + dz});
+            if (it == cells.end()) continue;
+            const double d = (w.positions[it->second] - p).norm();
+            if (d <= best) {
+              best = d;
+              found = it->second;
+            }
+          }
+      if (found < 0) cells.try_emplace(c, static_cast<int>(w.positions.size()));
+    }
+    if (found >= 0) {
+      w.vertexOf[i] = found;
+      ++w.mergedCount;
+    } else {
+      w.vertexOf[i] = static_cast<int>(w.positions.size());
+      w.positions.push_back(p);
+    }
+  }
+  return w;
+}
+
+MeshBuild buildMesh(const TriangleSoup& soup, const MeshBuildOptions& options) {
+  // Validate in the caller's numbering, before welding renumbers anything.
+  requireValidFaces(soup.faces, soup.positions.size());
+  requireFinite(soup.positions);
+
+  MeshBuild result;
+  BuildReport& r = result.report;
+  r.inputVertices = static_cast<int>(soup.positions.size());
+  r.inputFaces = static_cast<int>(soup.faces.size());
+
+  std::vector<Vec3> positions;
+  if (options.weld) {
+    Weld w = weld(soup.positions, options.weldOptions);
+    positions = std::move(w.positions);
+    result.vertexOf = std::move(w.vertexOf);
+    r.weldedVertices = w.mergedCount;
+  } else {
+    positions = soup.positions;
+    result.vertexOf.resize(soup.positions.size());
+    for (size_t i = 0; i < result.vertexOf.size(); ++i) result.vertexOf[i] = static_cast<int>(i);
+  }
+  std::vector<Face> faces(soup.faces.size());
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) faces[f][k] = result.vertexOf[soup.faces[f][k]];
+
+  result.mesh = Mesh(std::move(positions), faces, &r);
+
+  // A caller vertex of a split vertex belongs to the piece its own faces went to.
+  const Mesh& m = result.mesh;
+  for (int f = 0; f < m.faceCount(); ++f) {
+    const Face& caller = soup.faces[m.inputFace(f)];
+    for (int k = 0; k < 3; ++k) result.vertexOf[caller[k]] = m.face(f)[k];
+  }
+  return result;
+}
+
+std::vector<double> toCallerLayout(const std::vector<double>& meshValues, int dim,
+                                   const std::vector<int>& vertexOf) {
+  std::vector<double> out(vertexOf.size() * dim);
+  for (size_t i = 0; i < vertexOf.size(); ++i)
+    for (int d = 0; d < dim; ++d) out[i * dim + d] = meshValues[static_cast<size_t>(vertexOf[i]) * dim + d];
+  return out;
+}
+
+std::vector<double> toMeshLayout(const std::vector<double>& callerValues, int dim,
+                                 const std::vector<int>& vertexOf, const Mesh& mesh,
+                                 bool unitVectors) {
+  const int n = mesh.vertexCount();
+  std::vector<double> sum(static_cast<size_t>(n) * dim, 0.0);
+  std::vector<int> count(n, 0);
+  for (size_t i = 0; i < vertexOf.size(); ++i) {
+    const int v = vertexOf[i];
+    ++count[v];
+    for (int d = 0; d < dim; ++d) sum[static_cast<size_t>(v) * dim + d] += callerValues[i * dim + d];
+  }
+  // Split copies whose caller vertices all went to another piece of the same original vertex
+  // take that piece's value.
+  std::vector<int> donor(n, -1);
+  for (int v = 0; v < n; ++v) {
+    double* row = sum.data() + static_cast<size_t>(v) * dim;
+    if (count[v] > 1)
+      for (int d = 0; d < dim; ++d) row[d] /= count[v];
+    if (count[v] > 0 && donor[mesh.originalVertex(v)] < 0) donor[mesh.originalVertex(v)] = v;
+  }
+  for (int v = 0; v < n; ++v) {
+    const int from = donor[mesh.originalVertex(v)];
+    if (count[v] > 0 || from < 0) continue;
+    for (int d = 0; d < dim; ++d)
+      sum[static_cast<size_t>(v) * dim + d] = sum[static_cast<size_t>(from) * dim + d];
+  }
+  // Averaging first keeps the mean direction; normalising then puts it back on the sphere.
+  if (unitVectors) {
+    for (int v = 0; v < n; ++v) {
+      double* row = sum.data() + static_cast<size_t>(v) * dim;
+      double len = 0;
+      for (int d = 0; d < dim; ++d) len += row[d] * row[d];
+      len = std::sqrt(len);
+      if (len > 0)
+        for (int d = 0; d < dim; ++d) row[d] /= len;
+    }
+  }
+  return sum;
+}
+
+}  // namespace geoshift

@@ -1,0 +1,257 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "geoshift/error.hpp"
+#include "geoshift/mesh.hpp"
+#include "geoshift/shapes.hpp"
+
+using namespace geoshift;
+
+namespace {
+
+// The half-edge invariants every built mesh must satisfy, whatever the input was.
+void checkConnectivity(const Mesh& m) {
+  for (int h = 0; h < m.halfedgeCount(); ++h) {
+    const int t = m.twin(h);
+    if (t < 0) continue;
+    REQUIRE(m.twin(t) == h);
+    REQUIRE(m.tail(t) == m.head(h));
+    REQUIRE(m.head(t) == m.tail(h));
+  }
+  std::vector<int> corners(m.vertexCount(), 0);
+  for (const Face& f : m.faces())
+    for (int v : f) ++corners[v];
+  for (int v = 0; v < m.vertexCount(); ++v) {
+    if (corners[v] == 0) {
+      REQUIRE(m.isIsolated(v));
+      continue;
+    }
+    // One fan per vertex: the rotation around v meets every face at v exactly once.
+    int visited = 0;
+    std::set<int> faces;
+    m.forEachOutgoing(v, [&](int h) {
+      REQUIRE(m.tail(h) == v);
+      faces.insert(Mesh::faceOf(h));
+      ++visited;
+    });
+    REQUIRE(visited == corners[v]);
+    REQUIRE(static_cast<int>(faces.size()) == corners[v]);
+    if (m.isBoundaryVertex(v)) REQUIRE(m.twin(m.halfedge(v)) < 0);
+  }
+}
+
+int edgeCount(const Mesh& m) {
+  int interior = 0, boundary = 0;
+  for (int h = 0; h < m.halfedgeCount(); ++h) (m.twin(h) < 0 ? boundary : interior)++;
+  return interior / 2 + boundary;
+}
+
+TriangleSoup soup(std::vector<Vec3> p, std::vector<Face> f) { return {std::move(p), std::move(f)}; }
+
+}  // namespace
+
+TEST_CASE("closed meshes have twins everywhere and Euler characteristic 2", "[mesh]") {
+  for (const TriangleSoup& s : {shapes::tetrahedron(), shapes::cube(), shapes::icosphere(3)}) {
+    MeshBuild b = buildMesh(s);
+    const Mesh& m = b.mesh;
+    checkConnectivity(m);
+    REQUIRE(b.report.clean());
+    REQUIRE(m.boundaryLoops().empty());
+    for (int h = 0; h < m.halfedgeCount(); ++h) REQUIRE(m.twin(h) >= 0);
+    REQUIRE(m.vertexCount() - edgeCount(m) + m.faceCount() == 2);
+  }
+}
+
+TEST_CASE("a torus has Euler characteristic 0", "[mesh]") {
+  const Mesh m = buildMesh(shapes::torus(24, 12)).mesh;
+  checkConnectivity(m);
+  REQUIRE(m.vertexCount() - edgeCount(m) + m.faceCount() == 0);
+}
+
+TEST_CASE("boundary loops of a grid and an open cylinder", "[mesh]") {
+  const int n = 7;
+  const Mesh grid = buildMesh(shapes::grid(n, 0.2)).mesh;
+  checkConnectivity(grid);
+  auto loops = grid.boundaryLoops();
+  REQUIRE(loops.size() == 1);
+  REQUIRE(loops[0].size() == static_cast<size_t>(4 * (n - 1)));
+  int boundaryVertices = 0;
+  for (int v = 0; v < grid.vertexCount(); ++v) boundaryVertices += grid.isBoundaryVertex(v);
+  REQUIRE(boundaryVertices == 4 * (n - 1));
+  // Consecutive loop vertices are joined by a boundary edge.
+  for (size_t i = 0; i < loops[0].size(); ++i) {
+    const int a = loops[0][i], b = loops[0][(i + 1) % loops[0].size()];
+    bool found = false;
+    grid.forEachOutgoing(a, [&](int h) { found |= grid.head(h) == b && grid.twin(h) < 0; });
+    REQUIRE(found);
+  }
+
+  const Mesh cyl = buildMesh(shapes::cylinder(16, 5)).mesh;
+  checkConnectivity(cyl);
+  loops = cyl.boundaryLoops();
+  REQUIRE(loops.size() == 2);
+  REQUIRE(loops[0].size() == 16);
+  REQUIRE(loops[1].size() == 16);
+}
+
+TEST_CASE("neighbors include both boundary neighbours", "[mesh]") {
+  // A fan of two triangles around vertex 0: neighbours 1, 2, 3 in ccw order.
+  const Mesh m = buildMesh(soup({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}}, {{0, 1, 2}, {0, 2, 3}})).mesh;
+  REQUIRE(m.neighbors(0) == std::vector<int>{1, 2, 3});
+  REQUIRE(m.isBoundaryVertex(0));
+  REQUIRE(m.valence(2) == 3);
+}
+
+TEST_CASE("welding and the map back to the caller's layout round-trip exactly", "[mesh][weld]") {
+  const TriangleSoup welded = shapes::cube();
+  const TriangleSoup split = shapes::unwelded(welded);
+  REQUIRE(split.positions.size() == 36);
+  MeshBuild b = buildMesh(split);
+  REQUIRE(b.mesh.vertexCount() == 8);
+  REQUIRE(b.report.weldedVertices == 28);
+  checkConnectivity(b.mesh);
+  REQUIRE(b.mesh.boundaryLoops().empty());
+
+  // positions: mesh -> caller gives back every caller position bit for bit
+  std::vector<double> meshPos;
+  for (const Vec3& p : b.mesh.positions()) meshPos.insert(meshPos.end(), {p.x(), p.y(), p.z()});
+  const auto callerPos = toCallerLayout(meshPos, 3, b.vertexOf);
+  for (size_t i = 0; i < split.positions.size(); ++i)
+    for (int d = 0; d < 3; ++d) REQUIRE(callerPos[i * 3 + d] == split.positions[i][d]);
+
+  // per-vertex values: caller -> mesh averages coincident vertices, mesh -> caller copies back
+  std::vector<double> values(split.positions.size());
+  for (size_t i = 0; i < values.size(); ++i) values[i] = b.vertexOf[i] * 10.0;
+  const auto meshValues = toMeshLayout(values, 1, b.vertexOf, b.mesh);
+  REQUIRE(toCallerLayout(meshValues, 1, b.vertexOf) == values);
+
+  // unit vectors are averaged and re-normalised
+  std::vector<double> dirs(split.positions.size() * 3, 0.0);
+  for (size_t i = 0; i < split.positions.size(); ++i) dirs[i * 3 + (i % 3)] = 1.0;
+  const auto meshDirs = toMeshLayout(dirs, 3, b.vertexOf, b.mesh, true);
+  for (int v = 0; v < b.mesh.vertexCount(); ++v) {
+    const Vec3 n(meshDirs[v * 3], meshDirs[v * 3 + 1], meshDirs[v * 3 + 2]);
+    REQUIRE(n.norm() == Approx(1.0));
+  }
+}
+
+TEST_CASE("welding with a tolerance merges near vertices, exact welding does not", "[mesh][weld]") {
+  const std::vector<Vec3> p = {{0, 0, 0}, {1e-7, 0, 0}, {1, 0, 0}, {-0.0, 0, 0}};
+  Weld exact = weld(p);
+  REQUIRE(exact.positions.size() == 3);  // -0 equals +0
+  REQUIRE(exact.vertexOf == std::vector<int>{0, 1, 2, 0});
+  Weld loose = weld(p, {1e-6});
+  REQUIRE(loose.positions.size() == 2);
+  REQUIRE(loose.vertexOf == std::vector<int>{0, 0, 1, 0});
+  REQUIRE(loose.mergedCount == 2);
+}
+
+TEST_CASE("bad input is rejected with a message that names the culprit", "[mesh][errors]") {
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  REQUIRE_THROWS_WITH(buildMesh(soup({}, {})), Catch::Contains("empty mesh"));
+  REQUIRE_THROWS_WITH(buildMesh(soup(p, {})), Catch::Contains("no faces"));
+  REQUIRE_THROWS_WITH(buildMesh(soup(p, {{0, 1, 2}, {0, 2, 9}})),
+                      Catch::Contains("face 1, corner 2: vertex index 9 is out of range (4 vertices)"));
+  REQUIRE_THROWS_WITH(buildMesh(soup(p, {{0, -1, 2}})), Catch::Contains("vertex index -1"));
+  auto q = p;
+  q[2].y() = std::numeric_limits<double>::quiet_NaN();
+  REQUIRE_THROWS_WITH(buildMesh(soup(q, {{0, 1, 2}})), Catch::Contains("vertex 2 has a non-finite coordinate"));
+  q[2].y() = std::numeric_limits<double>::infinity();
+  REQUIRE_THROWS_AS(buildMesh(soup(q, {{0, 1, 2}})), InputError);
+  REQUIRE_THROWS_WITH(buildMesh(soup(p, {{0, 0, 1}, {1, 1, 2}})), Catch::Contains("no valid triangles"));
+}
+
+TEST_CASE("degenerate faces are dropped, counted and reported", "[mesh][errors]") {
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {0, 0, 1}};
+  // face 1 repeats a vertex, face 2 has collinear corners
+  MeshBuild b = buildMesh(soup(p, {{0, 1, 2}, {0, 0, 4}, {0, 1, 3}, {0, 4, 1}}));
+  REQUIRE(b.mesh.faceCount() == 2);
+  REQUIRE(b.report.repeatedIndexFaces == 1);
+  REQUIRE(b.report.zeroAreaFaces == 1);
+  REQUIRE(b.report.droppedFaces == std::vector<int>{1, 2});
+  REQUIRE(b.mesh.inputFace(1) == 3);
+  REQUIRE(b.report.messages.size() >= 2);
+  REQUIRE_THAT(b.report.messages[0], Catch::Contains("face 1 (0, 0, 4)"));
+  REQUIRE_THAT(b.report.messages[1], Catch::Contains("face 2 (0, 1, 3)"));
+  // vertex 3 is used only by the dropped face: isolated, kept
+  REQUIRE(b.mesh.vertexCount() == 5);
+  REQUIRE(b.mesh.isIsolated(3));
+  REQUIRE(b.report.isolatedVertices == 1);
+  checkConnectivity(b.mesh);
+  // a needle is not degenerate
+  MeshBuild needle = buildMesh(soup({{0, 0, 0}, {1, 0, 0}, {0.5, 1e-5, 0}}, {{0, 1, 2}}));
+  REQUIRE(needle.mesh.faceCount() == 1);
+}
+
+TEST_CASE("an edge with three faces is cut, never a crash", "[mesh][nonmanifold]") {
+  // Three triangles hinge on edge 0-1 (a fin).
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}};
+  MeshBuild b = buildMesh(soup(p, {{0, 1, 2}, {1, 0, 3}, {1, 0, 4}}));
+  REQUIRE(b.report.nonManifoldEdges == 1);
+  REQUIRE_THAT(b.report.messages[0], Catch::Contains("edge 0-1") || Catch::Contains("edge 1-0"));
+  checkConnectivity(b.mesh);
+  REQUIRE(b.mesh.faceCount() == 3);
+  // The fin that was cut off makes vertices 0 and 1 non-manifold; they are split.
+  REQUIRE(b.report.nonManifoldVertices == 2);
+  REQUIRE(b.mesh.vertexCount() == 7);
+  for (int v = 5; v < 7; ++v) REQUIRE(b.mesh.position(v) == b.mesh.position(b.mesh.originalVertex(v)));
+}
+
+TEST_CASE("faces of opposite orientation on one edge count as non-manifold", "[mesh][nonmanifold]") {
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}};
+  MeshBuild b = buildMesh(soup(p, {{0, 1, 2}, {0, 1, 3}}));
+  REQUIRE(b.report.nonManifoldEdges == 1);
+  checkConnectivity(b.mesh);
+  for (int h = 0; h < b.mesh.halfedgeCount(); ++h) REQUIRE(b.mesh.twin(h) < 0);
+}
+
+TEST_CASE("a vertex shared by two fans is split and the caller map follows the faces", "[mesh][nonmanifold]") {
+  // Two triangles that touch only at the origin (a bow tie), given with separate caller vertices
+  // for each triangle's copy of the origin, so welding creates the non-manifold vertex.
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {-1, 0, 0}, {-1, -1, 0}};
+  MeshBuild b = buildMesh(soup(p, {{0, 1, 2}, {3, 4, 5}}));
+  REQUIRE(b.report.weldedVertices == 1);
+  REQUIRE(b.report.nonManifoldVertices == 1);
+  REQUIRE(b.report.splitVertexCopies == 1);
+  REQUIRE(b.mesh.vertexCount() == 6);
+  checkConnectivity(b.mesh);
+  REQUIRE(b.vertexOf[0] != b.vertexOf[3]);
+  REQUIRE(b.mesh.originalVertex(b.vertexOf[3]) == b.vertexOf[0]);
+  REQUIRE(b.mesh.boundaryLoops().size() == 2);
+
+  // Two tetrahedra sharing a vertex: both closed, the shared vertex split.
+  TriangleSoup t = shapes::tetrahedron();
+  const size_t n = t.positions.size(), m = t.faces.size();
+  const Vec3 apex = t.positions[0];
+  for (size_t i = 0; i < n; ++i) t.positions.push_back(2 * apex - t.positions[i]);
+  for (size_t f = 0; f < m; ++f) {
+    Face g = t.faces[f];
+    for (int& i : g) i += static_cast<int>(n);
+    std::swap(g[1], g[2]);  // the point reflection flips orientation; undo it
+    t.faces.push_back(g);
+  }
+  MeshBuild two = buildMesh(t);
+  REQUIRE(two.report.nonManifoldVertices == 1);
+  REQUIRE(two.report.nonManifoldEdges == 0);
+  checkConnectivity(two.mesh);
+  REQUIRE(two.mesh.boundaryLoops().empty());
+}
+
+TEST_CASE("many faces on one vertex and duplicate faces do not break the build", "[mesh][nonmanifold]") {
+  // A "book" of 6 pages sharing the spine 0-1, plus an exact duplicate of one page.
+  std::vector<Vec3> p = {{0, 0, 0}, {0, 0, 1}};
+  std::vector<Face> f;
+  for (int i = 0; i < 6; ++i) {
+    const double a = i * M_PI / 3;
+    p.push_back({std::cos(a), std::sin(a), 0.5});
+    f.push_back({0, 1, static_cast<int>(p.size()) - 1});
+  }
+  f.push_back(f[0]);
+  MeshBuild b = buildMesh(soup(p, f));
+  // the spine, and the two other edges of the duplicated page
+  REQUIRE(b.report.nonManifoldEdges == 3);
+  checkConnectivity(b.mesh);
+}
