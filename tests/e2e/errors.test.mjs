@@ -1,0 +1,77 @@
+// Files that cannot be shown produce an error in plain words in the status line, and the mesh that
+// was on screen stays there.
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import { glb, tetraGlb } from './fixtures.mjs';
+import { assertMeshVisible, openFile, shoot, stats, useApp } from './harness.mjs';
+import { differenceFraction } from './png.mjs';
+
+const app = useApp();
+const SAMPLE = { file: 'ChineseDragon-10kv.off', vertices: 10000, triangles: 19994 };
+
+const validGlb = tetraGlb();
+const truncatedGlb = validGlb.subarray(0, validGlb.length - 40);
+const tetraJson = JSON.parse(validGlb.subarray(20, 20 + validGlb.readUInt32LE(12)).toString());
+
+const cases = [
+  { name: 'broken.glb', contents: Buffer.from('this is not a binary glTF file at all'), reason: /not a GLB|damaged/ },
+  { name: 'truncated.glb', contents: truncatedGlb, reason: /truncated/ },
+  {
+    name: 'bad-json.glb',
+    contents: Buffer.concat([validGlb.subarray(0, 20), Buffer.from('{"asset": '), validGlb.subarray(30)]),
+    reason: /JSON is malformed/,
+  },
+  {
+    name: 'draco.glb',
+    contents: tetraGlb({ extraJson: { extensionsUsed: ['KHR_draco_mesh_compression'], extensionsRequired: ['KHR_draco_mesh_compression'] } }),
+    reason: /this file uses Draco compression, not supported yet/,
+  },
+  {
+    name: 'external.gltf',
+    contents: JSON.stringify({ ...tetraJson, buffers: [{ uri: 'tetra%20data.bin', byteLength: 480 }] }),
+    reason: /needs the separate file "tetra data\.bin"/,
+  },
+  { name: 'empty.glb', contents: glb({ asset: { version: '2.0' } }, Buffer.alloc(0)), reason: /no triangles/ },
+  { name: 'model.fbx', contents: 'Kaydara FBX Binary', reason: /"\.fbx" files are not supported/ },
+  {
+    name: 'points.ply',
+    contents: 'ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 1 1\n',
+    reason: /no triangles/,
+  },
+  { name: 'bad-index.off', contents: 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n', reason: /face 0 refers to vertex 7/ },
+  { name: 'binary.obj', contents: Buffer.from([0x7f, 0x45, 0x4c, 0x46, 0, 0, 1, 2]), reason: /not a text OBJ file/ },
+  { name: 'nan.obj', contents: 'v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n', reason: /invalid position/ },
+];
+
+test('errors leave the sample on screen', async (t) => {
+  const { page } = app;
+  const before = await shoot(page, 'errors-before');
+  for (const c of cases) {
+    await t.test(c.name, async () => {
+      const s = await openFile(page, c.name, c.contents);
+      assert.equal(s.state, 'error', `${c.name} was accepted: ${s.text}`);
+      assert.ok(s.text.startsWith(`Could not read ${c.name}: `), s.text);
+      assert.match(s.text, c.reason);
+      assert.match(s.text, /Still showing ChineseDragon-10kv\.off\.$/);
+      assert.deepEqual(await stats(page), SAMPLE);
+    });
+  }
+  const after = await shoot(page, 'errors-after');
+  assertMeshVisible(after, 'after errors');
+  assert.ok(differenceFraction(before, after) < 0.01, 'the view changed although every file was rejected');
+});
+
+test('the error is styled as an error and cleared by the next good file', async () => {
+  const { page } = app;
+  await openFile(page, 'broken.glb', 'garbage');
+  const errorColour = await page.getByTestId('status').evaluate((el) => getComputedStyle(el).color);
+  const s = await openFile(page, 'good.glb', validGlb);
+  assert.equal(s.state, 'ok');
+  const okColour = await page.getByTestId('status').evaluate((el) => getComputedStyle(el).color);
+  assert.notEqual(errorColour, okColour);
+  await page.getByTestId('status').screenshot({ path: 'test-output/e2e/errors-status-ok.png' });
+});
+
+test('no uncaught errors in the page', () => {
+  assert.deepEqual(app.pageErrors.map(String), []);
+});

@@ -1,0 +1,120 @@
+// Small meshes built in code, in every format the app opens. The tetrahedron is the smallest closed
+// surface: 4 vertices, 4 triangles.
+
+export const TETRA = {
+  positions: [
+    [1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1],
+  ],
+  // Outward-facing (counter-clockwise seen from outside).
+  triangles: [
+    [0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2],
+  ],
+};
+
+/** Per-face colours that shaded (grey) rendering can never produce. */
+const FACE_COLOURS = [[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0]];
+
+/**
+ * A binary glTF of the tetrahedron with flat faces: 12 vertices (three per face) carrying
+ * POSITION, NORMAL and COLOR_0, and 16-bit indices. Written by hand from the glTF 2.0 spec.
+ */
+export function tetraGlb({ extraJson = {} } = {}) {
+  const positions = [], normals = [], colours = [];
+  TETRA.triangles.forEach((tri, f) => {
+    const [a, b, c] = tri.map((i) => TETRA.positions[i]);
+    const u = b.map((v, k) => v - a[k]), w = c.map((v, k) => v - a[k]);
+    const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+    const len = Math.hypot(...n);
+    for (const p of [a, b, c]) {
+      positions.push(...p);
+      normals.push(...n.map((v) => v / len));
+      colours.push(...FACE_COLOURS[f]);
+    }
+  });
+  const indices = Array.from({ length: 12 }, (_, i) => i);
+  const floats = (list) => Buffer.from(new Float32Array(list).buffer);
+  const parts = [floats(positions), floats(normals), floats(colours), Buffer.from(new Uint16Array(indices).buffer)];
+  const bufferViews = [];
+  let offset = 0;
+  for (const part of parts) {
+    bufferViews.push({ buffer: 0, byteOffset: offset, byteLength: part.length });
+    offset += part.length; // every part is a multiple of 4 bytes (12 x 2 bytes for indices)
+  }
+  const bin = Buffer.concat(parts);
+  const json = {
+    asset: { version: '2.0', generator: 'geoshift e2e fixtures' },
+    scene: 0,
+    scenes: [{ nodes: [0] }],
+    nodes: [{ mesh: 0 }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0, NORMAL: 1, COLOR_0: 2 }, indices: 3 }] }],
+    accessors: [
+      { bufferView: 0, componentType: 5126, count: 12, type: 'VEC3', min: [-1, -1, -1], max: [1, 1, 1] },
+      { bufferView: 1, componentType: 5126, count: 12, type: 'VEC3' },
+      { bufferView: 2, componentType: 5126, count: 12, type: 'VEC3' },
+      { bufferView: 3, componentType: 5123, count: 12, type: 'SCALAR' },
+    ],
+    bufferViews,
+    buffers: [{ byteLength: bin.length }],
+    ...extraJson,
+  };
+  return glb(json, bin);
+}
+
+/** Packs JSON and a BIN chunk into a GLB container (chunks padded to 4 bytes). */
+export function glb(json, bin) {
+  const pad = (buffer, byte) => Buffer.concat([buffer, Buffer.alloc((4 - (buffer.length % 4)) % 4, byte)]);
+  const jsonChunk = pad(Buffer.from(JSON.stringify(json)), 0x20);
+  const binChunk = pad(bin, 0);
+  const header = Buffer.alloc(12);
+  header.writeUInt32LE(0x46546c67, 0);
+  header.writeUInt32LE(2, 4);
+  header.writeUInt32LE(12 + 8 + jsonChunk.length + 8 + binChunk.length, 8);
+  const chunkHeader = (length, type) => {
+    const h = Buffer.alloc(8);
+    h.writeUInt32LE(length, 0);
+    h.writeUInt32LE(type, 4);
+    return h;
+  };
+  return Buffer.concat([
+    header, chunkHeader(jsonChunk.length, 0x4e4f534a), jsonChunk, chunkHeader(binChunk.length, 0x004e4942), binChunk,
+  ]);
+}
+
+export function tetraObj() {
+  return [
+    '# tetrahedron',
+    ...TETRA.positions.map((p) => `v ${p.join(' ')}`),
+    ...TETRA.triangles.map((t) => `f ${t.map((i) => i + 1).join(' ')}`),
+  ].join('\n') + '\n';
+}
+
+/** ASCII STL: three separate corners per facet, as STL always stores them. */
+export function tetraStl() {
+  const lines = ['solid tetra'];
+  for (const t of TETRA.triangles) {
+    lines.push('  facet normal 0 0 0', '    outer loop');
+    for (const i of t) lines.push(`      vertex ${TETRA.positions[i].join(' ')}`);
+    lines.push('    endloop', '  endfacet');
+  }
+  lines.push('endsolid tetra');
+  return lines.join('\n') + '\n';
+}
+
+export function tetraPly() {
+  return [
+    'ply', 'format ascii 1.0', 'comment tetrahedron',
+    'element vertex 4', 'property float x', 'property float y', 'property float z',
+    'property uchar red', 'property uchar green', 'property uchar blue',
+    'element face 4', 'property list uchar int vertex_indices', 'end_header',
+    ...TETRA.positions.map((p, i) => `${p.join(' ')} ${FACE_COLOURS[i].map((c) => c * 255).join(' ')}`),
+    ...TETRA.triangles.map((t) => `3 ${t.join(' ')}`),
+  ].join('\n') + '\n';
+}
+
+export function tetraCoff() {
+  return [
+    'COFF', '4 4 6',
+    ...TETRA.positions.map((p, i) => `${p.join(' ')} ${FACE_COLOURS[i].map((c) => c * 255).join(' ')} 255`),
+    ...TETRA.triangles.map((t) => `3 ${t.join(' ')}`),
+  ].join('\n') + '\n';
+}

@@ -1,0 +1,103 @@
+// Shared set-up for the end-to-end tests: a Vite dev server for web/ on a free port and Debian's
+// Chromium driven by playwright-core, both closed when the test file ends.
+//
+//   const app = useApp();            // registers before/after hooks
+//   test('...', async () => { await app.page.... });
+import { mkdirSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { after, before } from 'node:test';
+import assert from 'node:assert/strict';
+import { chromium } from 'playwright-core';
+import { createServer } from 'vite';
+import { analyze, decodePng } from './png.mjs';
+
+const webRoot = fileURLToPath(new URL('../../web/', import.meta.url));
+export const outputDir = fileURLToPath(new URL('../../test-output/e2e/', import.meta.url));
+
+// As TOOLCHAIN.md prescribes; `npx playwright install` cannot download browsers here.
+const CHROMIUM = {
+  executablePath: '/usr/bin/chromium',
+  args: [
+    '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
+    '--disable-sync', '--no-first-run', '--disable-quic',
+  ],
+};
+
+/**
+ * Starts server and browser before the file's tests and opens the app with its startup sample
+ * loaded. The returned object is filled in by then: { url, page, pageErrors }.
+ */
+export function useApp() {
+  const app = { url: '', page: null, pageErrors: [] };
+  let server = null;
+  let browser = null;
+  before(async () => {
+    mkdirSync(outputDir, { recursive: true });
+    server = await createServer({
+      root: webRoot,
+      configFile: `${webRoot}vite.config.ts`,
+      logLevel: 'warn',
+      clearScreen: false,
+      // No watcher and no HMR: files written under web/ by other builds must not reload the page
+      // in the middle of a test.
+      server: { host: '127.0.0.1', port: 0, strictPort: true, hmr: false, watch: null },
+    });
+    await server.listen();
+    app.url = `http://127.0.0.1:${server.httpServer.address().port}/`;
+    browser = await chromium.launch(CHROMIUM);
+    app.page = await browser.newPage({ viewport: { width: 800, height: 540 } });
+    app.page.on('pageerror', (error) => app.pageErrors.push(error));
+    await app.page.goto(app.url);
+    await app.page.evaluate(() => window.__geoshift.ready);
+  });
+  after(async () => {
+    await browser?.close();
+    await server?.close();
+  });
+  return app;
+}
+
+/** The status line: { state: 'ok' | 'loading' | 'error', text }. */
+export async function status(page) {
+  return page.getByTestId('status').evaluate((el) => ({ state: el.dataset.state, text: el.textContent }));
+}
+
+export async function stats(page) {
+  return page.evaluate(() => window.__geoshift.stats());
+}
+
+/** Gives a file to the file picker and waits until it is shown or rejected, and drawn. */
+export async function openFile(page, name, contents) {
+  await page.getByTestId('file-input').setInputFiles({
+    name,
+    mimeType: 'application/octet-stream',
+    buffer: Buffer.isBuffer(contents) ? contents : Buffer.from(contents),
+  });
+  await waitForStatusAbout(page, name);
+  return status(page);
+}
+
+export async function waitForStatusAbout(page, name) {
+  await page.waitForFunction((n) => {
+    const el = document.querySelector('[data-testid="status"]');
+    return el.dataset.state !== 'loading' && el.textContent.includes(n);
+  }, name, { timeout: 15_000 });
+  await page.evaluate(() => window.__geoshift.settled());
+}
+
+/** Screenshots the 3D view into test-output/e2e/NAME.png and returns the decoded image. */
+export async function shoot(page, name) {
+  const png = await page.getByTestId('canvas').screenshot({ path: `${outputDir}${name}.png` });
+  return decodePng(png);
+}
+
+/** Asserts that the view shows a lit, centred mesh of reasonable size, and returns its analysis. */
+export function assertMeshVisible(image, what) {
+  const a = analyze(image);
+  assert.ok(a.box, `${what}: the view shows only background`);
+  assert.ok(a.distinctColours >= 8, `${what}: only ${a.distinctColours} distinct colours, is it lit?`);
+  assert.ok(Math.abs(a.box.centreX - 0.5) < 0.15 && Math.abs(a.box.centreY - 0.5) < 0.15,
+    `${what}: mesh not centred (${JSON.stringify(a.box)})`);
+  assert.ok(Math.max(a.box.width, a.box.height) > 0.4, `${what}: mesh too small (${JSON.stringify(a.box)})`);
+  return a;
+}

@@ -1,0 +1,79 @@
+// Opening files: load, show, report. A failed load leaves the previous model on screen; when two
+// loads overlap (a second file dropped while the first still parses), only the last one is shown.
+
+import { describeLoadFailure, loadModel, LoadError, type MeshCounts } from './loaders';
+import type { StatusLine } from './status';
+import type { Viewer } from './viewer';
+import type { ViewModeControl } from './view-mode-control';
+
+export interface ShownStats extends MeshCounts {
+  file: string;
+}
+
+export class App {
+  private shown: ShownStats | null = null;
+  private latest = 0;
+  private pending: Promise<void> = Promise.resolve();
+
+  constructor(
+    private readonly viewer: Viewer,
+    private readonly status: StatusLine,
+    private readonly viewMode: ViewModeControl,
+  ) {}
+
+  /** Stats of the model on screen, or null before the first successful load. */
+  stats(): ShownStats | null {
+    return this.shown ? { ...this.shown } : null;
+  }
+
+  openFile(file: File): Promise<void> {
+    return this.open(file.name, () => file.arrayBuffer());
+  }
+
+  /** Fetches a file that ships with the app (the startup sample). */
+  openUrl(url: string, fileName: string): Promise<void> {
+    return this.open(fileName, async () => {
+      let response: Response;
+      try {
+        response = await fetch(url);
+      } catch (e) {
+        throw new LoadError(`it could not be downloaded (${e instanceof Error ? e.message : String(e)})`);
+      }
+      if (!response.ok) throw new LoadError(`the server answered ${response.status} ${response.statusText}`);
+      return response.arrayBuffer();
+    });
+  }
+
+  /** Resolves when no load is in progress and the last change has been drawn. */
+  async settled(): Promise<void> {
+    let seen: Promise<void>;
+    do {
+      seen = this.pending;
+      await seen;
+    } while (seen !== this.pending);
+    await this.viewer.nextFrame();
+  }
+
+  private open(fileName: string, read: () => Promise<ArrayBuffer>): Promise<void> {
+    const ticket = ++this.latest;
+    this.status.loading(fileName);
+    const run = async (): Promise<void> => {
+      try {
+        const model = await loadModel(fileName, await read());
+        if (ticket !== this.latest) return;
+        this.viewMode.modelChanged(model.hasVertexColors);
+        this.viewer.setModel(model);
+        this.shown = { file: fileName, ...model.counts };
+        this.status.shown(fileName, model.counts);
+      } catch (error) {
+        if (ticket !== this.latest) return;
+        console.error(`geoshift: could not read ${fileName}`, error);
+        const still = this.shown ? ` Still showing ${this.shown.file}.` : '';
+        this.status.error(`Could not read ${fileName}: ${describeLoadFailure(error)}.${still}`);
+      }
+    };
+    const done = run();
+    this.pending = this.pending.then(() => done);
+    return done;
+  }
+}

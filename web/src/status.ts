@@ -1,0 +1,32 @@
+// The status line in the header: what is on screen, what is loading, or what went wrong.
+// data-state lets tests and styles tell the three apart without parsing the text.
+
+import type { MeshCounts } from './loaders';
+
+const numberFormat = new Intl.NumberFormat('en-US');
+
+export class StatusLine {
+  constructor(private readonly element: HTMLElement) {}
+
+  loading(fileName: string): void {
+    this.set('loading', `Loading ${fileName}…`);
+  }
+
+  shown(fileName: string, counts: MeshCounts): void {
+    this.set(
+      'ok',
+      `${fileName}: ${numberFormat.format(counts.vertices)} vertices, ${numberFormat.format(counts.triangles)} triangles`,
+    );
+  }
+
+  /** An error keeps the previous mesh on screen, so the message says which file failed. */
+  error(message: string): void {
+    this.set('error', message);
+  }
+
+  private set(state: 'loading' | 'ok' | 'error', text: string): void {
+    this.element.dataset.state = state;
+    this.element.textContent = text;
+    this.element.title = text;
+  }
+}

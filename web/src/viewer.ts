@@ -1,0 +1,163 @@
+// The 3D view: renderer, camera, orbit controls, lights and the model on screen. It renders only
+// when something changed (camera move, new model, view mode, resize), so an idle page costs
+// nothing, which matters once the wasm filters share the CPU with it.
+
+import {
+  Color,
+  DirectionalLight,
+  HemisphereLight,
+  PerspectiveCamera,
+  Scene,
+  Sphere,
+  Vector3,
+  WebGLRenderer,
+  type Mesh,
+  type Object3D,
+} from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { materialFor, type ViewMode } from './materials';
+
+export interface ViewerModel {
+  root: Object3D;
+  meshes: Mesh[];
+}
+
+// The default view looks at the model from the front, a little from above and the right.
+const VIEW_DIRECTION = new Vector3(0.35, 0.3, 1).normalize();
+const CAMERA_UP = new Vector3(0, 1, 0);
+
+export class Viewer {
+  readonly canvas: HTMLCanvasElement;
+  private readonly renderer: WebGLRenderer;
+  private readonly scene = new Scene();
+  private readonly camera = new PerspectiveCamera(40, 1, 0.01, 100);
+  private readonly controls: OrbitControls;
+  private readonly hemisphere = new HemisphereLight(0xffffff, 0x3a3d44, 1.1);
+  private model: ViewerModel | null = null;
+  private mode: ViewMode = 'shaded';
+  private frameRequested = false;
+  private frameWaiters: Array<() => void> = [];
+
+  /** Throws if WebGL is unavailable; the caller reports it. */
+  constructor(private readonly container: HTMLElement) {
+    this.renderer = new WebGLRenderer({ antialias: true });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    this.canvas = this.renderer.domElement;
+    this.canvas.dataset.testid = 'canvas';
+    container.append(this.canvas);
+
+    this.scene.background = new Color(0x1d2127);
+    // Lights ride with the camera so that whatever side the user orbits to is lit the same way.
+    // The directional light's target must be in the camera's subtree too, or the light would keep
+    // pointing at the world origin.
+    const key = new DirectionalLight(0xffffff, 2.6);
+    key.position.set(0.6, 0.8, 1);
+    this.camera.add(key, key.target);
+    // HemisphereLight takes its direction from its world position, not its orientation, so it cannot
+    // simply be parented to the camera; updateLights() points it at the camera's "up" every frame.
+    this.scene.add(this.camera, this.hemisphere);
+
+    this.controls = new OrbitControls(this.camera, this.canvas);
+    this.controls.enableDamping = true;
+    this.controls.addEventListener('change', () => this.requestRender());
+
+    new ResizeObserver(() => this.resize()).observe(container);
+    this.resize();
+  }
+
+  /** Replaces the model on screen, disposes the previous one's geometry, and frames the new one. */
+  setModel(model: ViewerModel): void {
+    if (this.model) {
+      this.scene.remove(this.model.root);
+      for (const mesh of this.model.meshes) mesh.geometry.dispose();
+    }
+    this.model = model;
+    this.scene.add(model.root);
+    this.applyMode();
+    this.fitToView();
+  }
+
+  setViewMode(mode: ViewMode): void {
+    this.mode = mode;
+    this.applyMode();
+  }
+
+  /** Frames the whole model: centred, filling the view, seen from the default direction. */
+  fitToView(): void {
+    if (!this.model) return;
+    const sphere = this.boundingSphere(this.model);
+    const radius = Math.max(sphere.radius, 1e-6);
+    const halfVertical = (this.camera.fov * Math.PI) / 360;
+    const halfHorizontal = Math.atan(Math.tan(halfVertical) * this.camera.aspect);
+    // Distance at which the sphere touches the narrower side of the view, plus a small margin.
+    const distance = (radius / Math.sin(Math.min(halfVertical, halfHorizontal))) * 1.05;
+    this.camera.near = radius / 1000;
+    this.camera.far = distance + radius * 100;
+    this.camera.up.copy(CAMERA_UP);
+    this.camera.position.copy(sphere.center).addScaledVector(VIEW_DIRECTION, distance);
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(sphere.center);
+    this.controls.minDistance = radius * 0.01;
+    this.controls.maxDistance = radius * 50;
+    this.controls.update();
+    this.requestRender();
+  }
+
+  /** Resolves after the next frame has been drawn (requesting one if none is pending). */
+  nextFrame(): Promise<void> {
+    return new Promise((resolve) => {
+      this.frameWaiters.push(resolve);
+      this.requestRender();
+    });
+  }
+
+  requestRender(): void {
+    if (this.frameRequested) return;
+    this.frameRequested = true;
+    requestAnimationFrame(() => this.render());
+  }
+
+  private render(): void {
+    this.frameRequested = false;
+    // With damping, update() keeps moving the camera after the pointer stops and fires 'change',
+    // which requests the next frame until the motion settles.
+    this.controls.update();
+    this.updateLights();
+    this.renderer.render(this.scene, this.camera);
+    const waiters = this.frameWaiters;
+    this.frameWaiters = [];
+    for (const resolve of waiters) resolve();
+  }
+
+  private updateLights(): void {
+    this.hemisphere.position.copy(CAMERA_UP).applyQuaternion(this.camera.quaternion);
+  }
+
+  private applyMode(): void {
+    if (!this.model) return;
+    for (const mesh of this.model.meshes) mesh.material = materialFor(this.mode, mesh);
+    this.requestRender();
+  }
+
+  private boundingSphere(model: ViewerModel): Sphere {
+    model.root.updateMatrixWorld(true);
+    const total = new Sphere();
+    total.makeEmpty();
+    for (const mesh of model.meshes) {
+      if (!mesh.geometry.boundingSphere) mesh.geometry.computeBoundingSphere();
+      const sphere = mesh.geometry.boundingSphere!.clone().applyMatrix4(mesh.matrixWorld);
+      total.union(sphere);
+    }
+    return total;
+  }
+
+  private resize(): void {
+    const width = Math.max(1, this.container.clientWidth);
+    const height = Math.max(1, this.container.clientHeight);
+    // updateStyle=false: CSS sizes the canvas to its container; we only match the drawing buffer.
+    this.renderer.setSize(width, height, false);
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    this.requestRender();
+  }
+}
