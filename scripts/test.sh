@@ -14,6 +14,9 @@ ctest --test-dir build/native-release --output-on-failure -j "$(nproc 2>/dev/nul
 section "wasm (node --test)"
 node --test tests/wasm/ || failed+=(wasm)
 
+section "web type check (tsc)"
+npx --no-install tsc -p web/tsconfig.json --noEmit && echo "tsc: no type errors" || failed+=(typecheck)
+
 section "browser end-to-end (playwright-core + chromium)"
 node --test --test-concurrency=1 tests/e2e/ || failed+=(e2e)
 
