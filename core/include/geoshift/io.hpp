@@ -49,14 +49,15 @@ struct Document {
 };
 
 // Throws InputError naming the file and what/where (mesh, primitive, accessor, line) on unreadable
-// or unsupported content: Draco/meshopt compression, sparse accessors, non-finite values, indices out
-// of range. Points/lines primitives are kept untouched and reported in `warnings`. A file with no
-// triangle is an error.
+// or unsupported content: Draco/meshopt compression, non-finite values, indices out of range.
+// Sparse accessors are applied (and written back densely). Points, lines, strips and fans are kept
+// untouched and reported in `warnings`. A file with no triangle is an error.
 Document readDocument(const std::string& path);
 
 // Writes the document; positions, normals, colors and extras of each part replace the file's.
 // Same format as read: everything else is kept (materials, textures, nodes, extras, OBJ groups and
-// texture coordinates). Another format: geometry, normals and colors only, with a warning returned.
+// texture coordinates). Another format: geometry, normals, colors (and extras into glTF) only, in
+// world space for OBJ/OFF, with a warning returned.
 // Throws InputError (nothing written) when a part's array sizes do not match its positions.
 std::vector<std::string> writeDocument(const Document& document, const std::string& path);
 

@@ -1,0 +1,313 @@
+// glTF 2.0 reading through tinygltf: triangle primitives grouped by POSITION accessor into parts,
+// node world matrices as instances, everything else kept in the model for writing back.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <sstream>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "io_detail.hpp"
+
+namespace geoshift::io {
+namespace {
+
+const char* const kCompressedHint =
+    "; geoshift cannot decode compressed geometry — decompress it first (e.g. gltf-transform copy)";
+
+bool isCompression(const std::string& ext) {
+  return ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" ||
+         ext == "KHR_meshopt_compression";
+}
+
+std::string meshLabel(const nlohmann::json& meshes, size_t m) {
+  std::string name;
+  if (m < meshes.size() && meshes[m].is_object() && meshes[m].contains("name") &&
+      meshes[m]["name"].is_string())
+    name = meshes[m]["name"].get<std::string>();
+  return "mesh " + std::to_string(m) + " '" + name + "'";
+}
+
+// Compressed content is found in the JSON before tinygltf sees it: tinygltf may fail on a meshopt
+// fallback buffer without a URI, which would hide the real reason.
+void rejectCompression(const std::string& path, const std::string& jsonText) {
+  const auto j = nlohmann::json::parse(jsonText, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return;  // tinygltf reports the syntax error
+  const auto meshes = j.value("meshes", nlohmann::json::array());
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    if (!meshes[m].is_object()) continue;
+    const auto prims = meshes[m].value("primitives", nlohmann::json::array());
+    for (size_t p = 0; p < prims.size(); ++p) {
+      if (!prims[p].is_object() || !prims[p].contains("extensions")) continue;
+      for (const auto& [ext, v] : prims[p]["extensions"].items())
+        if (isCompression(ext))
+          fail(path, meshLabel(meshes, m) + " primitive " + std::to_string(p) + " uses " + ext +
+                         kCompressedHint);
+    }
+  }
+  const auto views = j.value("bufferViews", nlohmann::json::array());
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (!views[v].is_object() || !views[v].contains("extensions")) continue;
+    for (const auto& [ext, val] : views[v]["extensions"].items())
+      if (isCompression(ext))
+        fail(path, "buffer view " + std::to_string(v) + " uses " + ext + kCompressedHint);
+  }
+  for (const char* key : {"extensionsRequired", "extensionsUsed"})
+    for (const auto& ext : j.value(key, nlohmann::json::array()))
+      if (ext.is_string() && isCompression(ext.get<std::string>()))
+        fail(path, "the file declares " + ext.get<std::string>() + " in " + key + kCompressedHint);
+}
+
+// Images are kept as the bytes of the file: decoding and re-encoding would change them.
+bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                    const unsigned char* bytes, int size, void*) {
+  image->as_is = true;
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
+  return true;
+}
+
+Eigen::Matrix4d localMatrix(const tinygltf::Node& n) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  if (n.matrix.size() == 16) {
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m(r, c) = n.matrix[c * 4 + r];  // column-major in glTF
+    return m;
+  }
+  Eigen::Affine3d a = Eigen::Affine3d::Identity();
+  if (n.translation.size() == 3) a.translate(Eigen::Vector3d(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4)
+    a.rotate(Eigen::Quaterniond(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]).normalized());
+  if (n.scale.size() == 3) a.scale(Eigen::Vector3d(n.scale[0], n.scale[1], n.scale[2]));
+  return a.matrix();
+}
+
+std::vector<Eigen::Matrix4d> worldMatrices(const tinygltf::Model& model) {
+  const size_t n = model.nodes.size();
+  std::vector<int> parent(n, -1);
+  for (size_t i = 0; i < n; ++i)
+    for (int c : model.nodes[i].children)
+      if (c >= 0 && static_cast<size_t>(c) < n) parent[c] = static_cast<int>(i);
+  std::vector<Eigen::Matrix4d> world(n);
+  std::vector<int> state(n, 0);  // 0 todo, 1 in progress (cycle guard), 2 done
+  std::function<const Eigen::Matrix4d&(size_t)> get = [&](size_t i) -> const Eigen::Matrix4d& {
+    if (state[i] == 2) return world[i];
+    state[i] = 1;
+    world[i] = localMatrix(model.nodes[i]);
+    if (parent[i] >= 0 && state[parent[i]] != 1) world[i] = get(parent[i]) * world[i];
+    state[i] = 2;
+    return world[i];
+  };
+  for (size_t i = 0; i < n; ++i) get(i);
+  return world;
+}
+
+const char* modeName(int mode) {
+  switch (mode) {
+    case 0: return "POINTS";
+    case 1: return "LINES";
+    case 2: return "LINE_LOOP";
+    case 3: return "LINE_STRIP";
+    case 5: return "TRIANGLE_STRIP";
+    case 6: return "TRIANGLE_FAN";
+  }
+  return "unknown";
+}
+
+// The accessor every primitive of the group uses for `semantic`, or -1 when absent or not shared.
+int sharedAttribute(const tinygltf::Mesh& mesh, const GltfPartBinding& b, const std::string& semantic,
+                    bool& inconsistent) {
+  int found = -2;
+  for (int p : b.primitives) {
+    const auto& attrs = mesh.primitives[p].attributes;
+    const auto it = attrs.find(semantic);
+    const int acc = it == attrs.end() ? -1 : it->second;
+    if (found == -2) found = acc;
+    else if (found != acc) inconsistent = true;
+  }
+  return inconsistent ? -1 : found;
+}
+
+}  // namespace
+
+Document readGltf(const std::string& path, FileFormat format) {
+  const std::string bytes = readWholeFile(path);
+  const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+  if (binary) {
+    // GLB: JSON chunk length at byte 12, chunk data at byte 20.
+    if (bytes.size() >= 20) {
+      uint32_t len = 0;
+      std::memcpy(&len, bytes.data() + 12, 4);
+      if (20 + static_cast<size_t>(len) <= bytes.size()) rejectCompression(path, bytes.substr(20, len));
+    }
+  } else {
+    rejectCompression(path, bytes);
+  }
+
+  auto source = std::make_shared<DocumentSource>();
+  source->format = format;
+  GltfSource& g = source->gltf;
+  g.baseDir = std::filesystem::path(path).parent_path().string();
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(keepImageBytes, nullptr);
+  std::string err, warn;
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&g.model, &err, &warn, data,
+                                                       static_cast<unsigned>(bytes.size()), g.baseDir)
+                         : loader.LoadASCIIFromString(&g.model, &err, &warn, bytes.data(),
+                                                      static_cast<unsigned>(bytes.size()), g.baseDir);
+  while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+  if (!ok) fail(path, "cannot read glTF: " + (err.empty() ? std::string("unknown error") : err));
+
+  Document doc;
+  doc.path = path;
+  doc.format = format;
+  {
+    std::istringstream ws(warn);
+    for (std::string line; std::getline(ws, line);)
+      if (!line.empty()) doc.warnings.push_back(path + ": " + line);
+  }
+
+  const auto& model = g.model;
+  const auto world = worldMatrices(model);
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const auto& mesh = model.meshes[m];
+    const std::string mlabel = "mesh " + std::to_string(m) + " '" + mesh.name + "'";
+    std::map<int, size_t> groupOf;  // POSITION accessor -> binding index
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const auto& prim = mesh.primitives[p];
+      const std::string plabel = mlabel + " primitive " + std::to_string(p);
+      if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {
+        doc.warnings.push_back(path + ": " + plabel + " has mode " + modeName(prim.mode) + " (" +
+                               std::to_string(prim.mode) +
+                               "); passed through untouched (geoshift filters TRIANGLES only)");
+        continue;
+      }
+      const auto pos = prim.attributes.find("POSITION");
+      if (pos == prim.attributes.end()) {
+        doc.warnings.push_back(path + ": " + plabel + " has no POSITION; passed through untouched");
+        continue;
+      }
+      // tinygltf does not check accessor indices; .at() below relies on this.
+      for (const auto& [semantic, acc] : prim.attributes)
+        if (acc < 0 || static_cast<size_t>(acc) >= model.accessors.size())
+          fail(path, plabel + ": " + semantic + " names accessor " + std::to_string(acc) + ", which does not exist");
+      if (prim.indices >= static_cast<int>(model.accessors.size()))
+        fail(path, plabel + ": indices name accessor " + std::to_string(prim.indices) + ", which does not exist");
+      auto [it, added] = groupOf.emplace(pos->second, g.parts.size());
+      if (added) {
+        GltfPartBinding b;
+        b.mesh = static_cast<int>(m);
+        b.positionAccessor = pos->second;
+        g.parts.push_back(b);
+      }
+      g.parts[it->second].primitives.push_back(static_cast<int>(p));
+    }
+  }
+
+  for (auto& b : g.parts) {
+    const auto& mesh = model.meshes[b.mesh];
+    MeshPart part;
+    part.label = "mesh " + std::to_string(b.mesh) + " '" + mesh.name + "' primitive";
+    if (b.primitives.size() > 1) part.label += "s";
+    for (size_t i = 0; i < b.primitives.size(); ++i) {
+      part.label += i ? ',' : ' ';
+      part.label += std::to_string(b.primitives[i]);
+    }
+    const auto& posAcc = model.accessors.at(b.positionAccessor);
+    if (componentCount(posAcc.type) != 3) fail(path, part.label + ": POSITION is not VEC3");
+    const auto pos = readAccessor(model, b.positionAccessor, path, part.label + " POSITION");
+    b.vertexCount = posAcc.count;
+    part.positions.resize(b.vertexCount);
+    for (size_t v = 0; v < b.vertexCount; ++v) {
+      part.positions[v] = Vec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+      if (!part.positions[v].allFinite())
+        fail(path, part.label + ": vertex " + std::to_string(v) + " has a non-finite position (" +
+                       formatNumber(pos[3 * v]) + ", " + formatNumber(pos[3 * v + 1]) + ", " +
+                       formatNumber(pos[3 * v + 2]) + ")");
+    }
+
+    for (int p : b.primitives) {
+      const auto& prim = mesh.primitives[p];
+      const std::string plabel = "mesh " + std::to_string(b.mesh) + " '" + mesh.name +
+                                 "' primitive " + std::to_string(p);
+      std::vector<double> idx;
+      if (prim.indices >= 0) {
+        if (componentCount(model.accessors.at(prim.indices).type) != 1)
+          fail(path, plabel + ": indices accessor is not SCALAR");
+        idx = readAccessor(model, prim.indices, path, plabel + " indices");
+      } else {
+        idx.resize(b.vertexCount);
+        for (size_t v = 0; v < b.vertexCount; ++v) idx[v] = static_cast<double>(v);
+      }
+      if (idx.size() % 3 != 0)
+        doc.warnings.push_back(path + ": " + plabel + ": " + std::to_string(idx.size()) +
+                               " indices is not a multiple of 3; the last " +
+                               std::to_string(idx.size() % 3) + " ignored");
+      for (size_t t = 0; t + 2 < idx.size(); t += 3) {
+        Face f;
+        for (int k = 0; k < 3; ++k) {
+          const double i = idx[t + k];
+          if (i < 0 || i >= static_cast<double>(b.vertexCount))
+            fail(path, plabel + ": triangle " + std::to_string(t / 3) + " uses index " +
+                           formatNumber(i) + " out of range (POSITION has " +
+                           std::to_string(b.vertexCount) + " vertices)");
+          f[k] = static_cast<int>(i);
+        }
+        part.faces.push_back(f);
+      }
+    }
+
+    auto attribute = [&](const std::string& semantic, bool warnIfMixed) {
+      bool inconsistent = false;
+      const int acc = sharedAttribute(mesh, b, semantic, inconsistent);
+      if (inconsistent && warnIfMixed)
+        doc.warnings.push_back(path + ": " + part.label + ": primitives sharing POSITION use different " +
+                               semantic + " accessors; " + semantic + " not read");
+      if (acc >= 0 && model.accessors.at(acc).count != b.vertexCount)
+        fail(path, part.label + " " + semantic + ": " + std::to_string(model.accessors[acc].count) +
+                       " elements for " + std::to_string(b.vertexCount) + " vertices");
+      return acc;
+    };
+    if (const int acc = attribute("NORMAL", true); acc >= 0) {
+      if (componentCount(model.accessors[acc].type) != 3) fail(path, part.label + ": NORMAL is not VEC3");
+      const auto n = readAccessor(model, acc, path, part.label + " NORMAL");
+      part.normals.resize(b.vertexCount);
+      for (size_t v = 0; v < b.vertexCount; ++v) part.normals[v] = Vec3(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
+    }
+    if (const int acc = attribute("COLOR_0", true); acc >= 0) {
+      const int comps = componentCount(model.accessors[acc].type);
+      if (comps != 3 && comps != 4) fail(path, part.label + ": COLOR_0 is neither VEC3 nor VEC4");
+      // Integer colors are normalized by definition, even when the flag is missing.
+      const auto c = readAccessor(model, acc, path, part.label + " COLOR_0", true);
+      part.colors.resize(b.vertexCount);
+      for (size_t v = 0; v < b.vertexCount; ++v)
+        part.colors[v] = Eigen::Vector4d(c[comps * v], c[comps * v + 1], c[comps * v + 2],
+                                         comps == 4 ? c[comps * v + 3] : 1.0);
+    }
+    for (const auto& [semantic, ignored] : mesh.primitives[b.primitives[0]].attributes) {
+      if (semantic.empty() || semantic[0] != '_') continue;
+      const int acc = attribute(semantic, true);
+      if (acc < 0) continue;
+      const auto& a = model.accessors[acc];
+      const int dim = componentCount(a.type);
+      if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || dim > 4) continue;
+      part.extras.push_back({semantic, dim, readAccessor(model, acc, path, part.label + " " + semantic)});
+    }
+
+    for (size_t n = 0; n < model.nodes.size(); ++n)
+      if (model.nodes[n].mesh == b.mesh) part.instances.push_back(world[n]);
+    if (part.instances.empty()) part.instances.push_back(Eigen::Matrix4d::Identity());
+    doc.parts.push_back(std::move(part));
+  }
+
+  size_t triangles = 0;
+  for (const auto& p : doc.parts) triangles += p.faces.size();
+  if (triangles == 0) fail(path, "the file contains no triangles");
+  doc.source = std::move(source);
+  return doc;
+}
+
+}  // namespace geoshift::io

@@ -1,0 +1,200 @@
+// Format dispatch, atomic writes and the world-space soups.
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "io_detail.hpp"
+
+namespace geoshift {
+namespace fs = std::filesystem;
+
+namespace io {
+
+void fail(const std::string& path, const std::string& what) {
+  throw InputError(path + ": " + what);
+}
+
+bool isGltfFamily(FileFormat f) { return f == FileFormat::Gltf || f == FileFormat::Glb; }
+
+std::string formatNumber(double v) {
+  char buf[64];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+std::string readWholeFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open the file (missing or unreadable)");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) fail(path, "read error");
+  return ss.str();
+}
+
+void AtomicFileSet::add(const std::string& path, std::string bytes) {
+  for (auto& f : files_)
+    if (f.first == path) {
+      f.second = std::move(bytes);
+      return;
+    }
+  files_.emplace_back(path, std::move(bytes));
+}
+
+void AtomicFileSet::commit() {
+  // Temporaries live in the target directory so that rename is atomic (same file system).
+  static std::atomic<int> counter{0};
+  std::vector<std::pair<fs::path, fs::path>> written;  // temporary, target
+  auto cleanup = [&] {
+    std::error_code ec;
+    for (auto& w : written) fs::remove(w.first, ec);
+  };
+  for (auto& [target, bytes] : files_) {
+    fs::path t(target);
+    fs::path dir = t.parent_path().empty() ? fs::path(".") : t.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) {
+      // A copied texture may sit in a sub-directory of the output; the output's own directory
+      // must exist already (checked by writeDocument).
+      fs::create_directories(dir, ec);
+      if (ec) {
+        cleanup();
+        fail(target, "cannot create directory '" + dir.string() + "': " + ec.message());
+      }
+    }
+    std::string name = ".";
+    name += t.filename().string();
+    name += ".geoshift-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".tmp";
+    const fs::path tmp = dir / name;
+    written.emplace_back(tmp, t);
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      cleanup();
+      fail(target, "cannot create a file in '" + dir.string() + "'");
+    }
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    if (!out) {
+      cleanup();
+      fail(target, "write failed (disk full?)");
+    }
+  }
+  for (size_t i = 0; i < written.size(); ++i) {
+    std::error_code ec;
+    fs::rename(written[i].first, written[i].second, ec);
+    if (ec) {
+      for (size_t j = i; j < written.size(); ++j) fs::remove(written[j].first, ec);
+      fail(written[i].second.string(), "cannot replace the file: " + ec.message());
+    }
+  }
+  files_.clear();
+}
+
+void checkPartSizes(const std::string& path, const MeshPart& part, size_t partIndex) {
+  const size_t n = part.positions.size();
+  const std::string where = "part " + std::to_string(partIndex) +
+                            (part.label.empty() ? "" : " (" + part.label + ")");
+  if (!part.normals.empty() && part.normals.size() != n)
+    fail(path, where + " has " + std::to_string(part.normals.size()) + " normals for " +
+                   std::to_string(n) + " positions");
+  if (!part.colors.empty() && part.colors.size() != n)
+    fail(path, where + " has " + std::to_string(part.colors.size()) + " colors for " +
+                   std::to_string(n) + " positions");
+  for (const auto& e : part.extras) {
+    if (e.dim < 1 || e.dim > 4)
+      fail(path, where + " extra attribute '" + e.name + "' has dimension " +
+                     std::to_string(e.dim) + " (1 to 4 supported)");
+    if (e.values.size() != n * static_cast<size_t>(e.dim))
+      fail(path, where + " extra attribute '" + e.name + "' has " +
+                     std::to_string(e.values.size()) + " values, expected " +
+                     std::to_string(n * e.dim));
+  }
+  for (const auto& f : part.faces)
+    for (int v : f)
+      if (v < 0 || static_cast<size_t>(v) >= n)
+        fail(path, where + " has a face index " + std::to_string(v) + " out of range (" +
+                       std::to_string(n) + " positions)");
+}
+
+}  // namespace io
+
+FileFormat formatFromPath(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".gltf") return FileFormat::Gltf;
+  if (ext == ".glb") return FileFormat::Glb;
+  if (ext == ".obj") return FileFormat::Obj;
+  if (ext == ".off") return FileFormat::Off;
+  io::fail(path, "unknown file extension '" + ext +
+                     "'; geoshift reads and writes .gltf, .glb, .obj and .off");
+}
+
+Document readDocument(const std::string& path) {
+  const FileFormat format = formatFromPath(path);
+  std::error_code ec;
+  if (!fs::exists(path, ec)) io::fail(path, "file not found");
+  if (fs::is_directory(path, ec)) io::fail(path, "is a directory, not a mesh file");
+  switch (format) {
+    case FileFormat::Gltf:
+    case FileFormat::Glb: return io::readGltf(path, format);
+    case FileFormat::Obj: return io::readObj(path);
+    case FileFormat::Off: return io::readOff(path);
+  }
+  io::fail(path, "unsupported format");
+}
+
+std::vector<std::string> writeDocument(const Document& document, const std::string& path) {
+  const FileFormat format = formatFromPath(path);
+  const fs::path dir = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!dir.empty() && !fs::is_directory(dir, ec))
+    io::fail(path, "output directory '" + dir.string() + "' does not exist");
+  if (document.parts.empty()) io::fail(path, "nothing to write: the document has no mesh part");
+  for (size_t i = 0; i < document.parts.size(); ++i)
+    io::checkPartSizes(path, document.parts[i], i);
+
+  const DocumentSource* src = document.source.get();
+  const bool hasGltf = src && io::isGltfFamily(src->format);
+  const bool hasObj = src && src->format == FileFormat::Obj;
+  std::vector<std::string> warnings;
+  if (io::isGltfFamily(format) && hasGltf) return io::writeGltfInto(document, path, format);
+  if (format == FileFormat::Obj && hasObj) return io::writeObjInto(document, path);
+
+  if (io::isGltfFamily(format)) warnings = io::writeGltfFresh(document, path, format);
+  else if (format == FileFormat::Obj) warnings = io::writeObjFresh(document, path);
+  else warnings = io::writeOff(document, path);
+  if (src && !(format == FileFormat::Off && src->format == FileFormat::Off)) {
+    warnings.push_back(path + ": written from a different format (" + document.path +
+                       "): geometry, normals and colors only; materials, textures, texture "
+                       "coordinates, groups and scene structure of the source were not carried over");
+  }
+  return warnings;
+}
+
+TriangleSoup partSoup(const MeshPart& part) { return {part.positions, part.faces}; }
+
+TriangleSoup worldSoup(const Document& document) {
+  TriangleSoup soup;
+  static const std::vector<Eigen::Matrix4d> identity{Eigen::Matrix4d::Identity()};
+  for (const auto& part : document.parts) {
+    const auto& instances = part.instances.empty() ? identity : part.instances;
+    for (const auto& m : instances) {
+      const int offset = static_cast<int>(soup.positions.size());
+      // A mirroring instance turns counter-clockwise faces clockwise; flip them back.
+      const bool mirrored = m.topLeftCorner<3, 3>().determinant() < 0;
+      for (const auto& p : part.positions)
+        soup.positions.push_back((m * p.homogeneous()).hnormalized());
+      for (const auto& f : part.faces)
+        soup.faces.push_back(mirrored ? Face{f[0] + offset, f[2] + offset, f[1] + offset}
+                                      : Face{f[0] + offset, f[1] + offset, f[2] + offset});
+    }
+  }
+  return soup;
+}
+
+}  // namespace geoshift

@@ -1,0 +1,120 @@
+#pragma once
+// Private to the io layer: what each reader keeps of the parsed file so that writeDocument can put
+// the new geometry back into it, and the helpers the format files share.
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "geoshift/error.hpp"
+#include "geoshift/io.hpp"
+
+namespace geoshift {
+
+// One MeshPart of a glTF model: the triangle primitives that share its POSITION accessor.
+struct GltfPartBinding {
+  int mesh = -1;
+  std::vector<int> primitives;
+  int positionAccessor = -1;
+  size_t vertexCount = 0;
+};
+
+struct GltfSource {
+  tinygltf::Model model;
+  std::string baseDir;  // for external images referenced by relative URI
+  std::vector<GltfPartBinding> parts;
+};
+
+// OBJ is rewritten textually: the byte range of every `v` line and the values it held, so that
+// unchanged vertices keep their original text exactly.
+struct ObjVertexLine {
+  size_t begin = 0;  // offset of the 'v'
+  size_t end = 0;    // offset of the line terminator (or end of text)
+  Vec3 position;
+  bool hasColor = false;
+  Vec3 color;
+};
+
+struct ObjSource {
+  std::string text;
+  std::vector<ObjVertexLine> vertexLines;
+  std::vector<Vec3> normals;  // as exposed on read, to notice when a caller changed them
+};
+
+struct DocumentSource {
+  FileFormat format = FileFormat::Obj;
+  GltfSource gltf;  // Gltf, Glb
+  ObjSource obj;    // Obj
+};
+
+namespace io {
+
+// "PATH: what" — every message names the file first.
+[[noreturn]] void fail(const std::string& path, const std::string& what);
+
+bool isGltfFamily(FileFormat f);
+
+// Shortest text that reads back as exactly the same double.
+std::string formatNumber(double v);
+
+// Files written together: each goes to a temporary file beside its target, and only when all of
+// them are complete are they renamed into place. On any failure every temporary is removed.
+class AtomicFileSet {
+ public:
+  void add(const std::string& path, std::string bytes);
+  void commit();
+
+ private:
+  std::vector<std::pair<std::string, std::string>> files_;
+};
+
+// InputError when the part arrays do not match its positions (normals, colors, extras).
+void checkPartSizes(const std::string& path, const MeshPart& part, size_t partIndex);
+
+Document readGltf(const std::string& path, FileFormat format);
+Document readObj(const std::string& path);
+Document readOff(const std::string& path);
+
+// Write back into the model that was read (everything that is not geometry kept).
+std::vector<std::string> writeGltfInto(const Document& document, const std::string& path,
+                                       FileFormat format);
+// A minimal model built from the parts alone (source of another format).
+std::vector<std::string> writeGltfFresh(const Document& document, const std::string& path,
+                                        FileFormat format);
+// Serialise a model (glTF JSON or GLB) together with its external buffers and copied images.
+// Returns warnings (an external image that could not be copied).
+std::vector<std::string> serializeGltf(tinygltf::Model model, const std::string& sourceBaseDir,
+                                       const std::string& path, FileFormat format,
+                                       AtomicFileSet& files);
+
+std::vector<std::string> writeObjInto(const Document& document, const std::string& path);
+std::vector<std::string> writeObjFresh(const Document& document, const std::string& path);
+std::vector<std::string> writeOff(const Document& document, const std::string& path);
+
+std::string readWholeFile(const std::string& path);
+
+// --- glTF accessors (gltf_accessor.cpp) ---
+// Where an accessor's elements sit: element i starts at data + offset + i * stride.
+struct AccessorLayout {
+  int buffer = -1;
+  size_t offset = 0;
+  size_t stride = 0;
+  int components = 0;
+  int componentSize = 0;
+};
+// Throws naming `where` when the accessor does not fit its buffer view or buffer.
+AccessorLayout accessorLayout(const tinygltf::Model& model, int accessor, const std::string& path,
+                              const std::string& where);
+// All elements as doubles (count * components), sparse substitution applied; integer components
+// are scaled to [0,1] / [-1,1] when the accessor is normalized or `normalize` is set.
+std::vector<double> readAccessor(const tinygltf::Model& model, int accessor, const std::string& path,
+                                 const std::string& where, bool normalize = false);
+// Stores one component of the given type; normalized integer types take values in [0,1] / [-1,1].
+void storeComponent(unsigned char* dst, int componentType, bool normalized, double value);
+int componentCount(int type);
+// Recomputes an accessor's min/max from the values stored in its buffer (as stored: integer units
+// for integer types, float-rounded for floats), as the spec requires for POSITION.
+void updateMinMax(tinygltf::Model& model, int accessor);
+
+}  // namespace io
+}  // namespace geoshift

@@ -1,0 +1,233 @@
+// OBJ through tinyobjloader for faces, normals and diagnostics; the `v` lines are also parsed here
+// in double precision (tinyobjloader's float build would round them) and are the only lines
+// rewritten on save, so groups, materials, texture coordinates and comments stay byte for byte.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include <tiny_obj_loader.h>
+
+#include "io_detail.hpp"
+
+namespace geoshift::io {
+namespace {
+
+void scanVertexLines(const std::string& path, const std::string& text, ObjSource& src) {
+  size_t lineNo = 0;
+  for (size_t pos = 0; pos < text.size();) {
+    ++lineNo;
+    size_t end = text.find_first_of("\r\n", pos);
+    if (end == std::string::npos) end = text.size();
+    size_t s = text.find_first_not_of(" \t", pos);
+    if (s < end && text[s] == 'v' && s + 1 < end && (text[s + 1] == ' ' || text[s + 1] == '\t')) {
+      std::vector<double> values;
+      std::istringstream in(text.substr(s + 2, end - s - 2));
+      for (std::string tok; in >> tok;) {
+        char* stop = nullptr;
+        const double v = std::strtod(tok.c_str(), &stop);
+        if (*stop != '\0')
+          fail(path + ":" + std::to_string(lineNo),
+               "'" + tok + "' is not a number (vertex " + std::to_string(src.vertexLines.size() + 1) + ")");
+        values.push_back(v);
+      }
+      const size_t vi = src.vertexLines.size() + 1;  // OBJ numbers vertices from 1
+      if (values.size() < 3)
+        fail(path + ":" + std::to_string(lineNo), "expected 3 coordinates for vertex " + std::to_string(vi));
+      ObjVertexLine l;
+      l.begin = s;
+      l.end = end;
+      l.position = Vec3(values[0], values[1], values[2]);
+      if (!l.position.allFinite())
+        fail(path + ":" + std::to_string(lineNo), "vertex " + std::to_string(vi) + " has a non-finite coordinate");
+      if (values.size() >= 6) {
+        l.hasColor = true;
+        l.color = Vec3(values[3], values[4], values[5]);
+      }
+      src.vertexLines.push_back(l);
+    }
+    pos = end;
+    if (pos < text.size() && text[pos] == '\r') ++pos;
+    if (pos < text.size() && text[pos] == '\n') ++pos;
+  }
+}
+
+std::string vertexLine(const Vec3& p, const Eigen::Vector4d* color) {
+  std::string s = "v " + formatNumber(p.x()) + " " + formatNumber(p.y()) + " " + formatNumber(p.z());
+  if (color)
+    for (int k = 0; k < 3; ++k) {
+      s += ' ';
+      s += formatNumber((*color)[k]);
+    }
+  return s;
+}
+
+}  // namespace
+
+Document readObj(const std::string& path) {
+  auto source = std::make_shared<DocumentSource>();
+  source->format = FileFormat::Obj;
+  ObjSource& src = source->obj;
+  src.text = readWholeFile(path);
+
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = true;
+  config.mtl_search_path = std::filesystem::path(path).parent_path().string();
+  tinyobj::ObjReader reader;
+  const bool ok = reader.ParseFromFile(path, config);
+  Document doc;
+  doc.path = path;
+  doc.format = FileFormat::Obj;
+  {
+    std::istringstream ws(reader.Warning());
+    for (std::string line; std::getline(ws, line);)
+      if (!line.empty()) doc.warnings.push_back(path + ": " + line);
+  }
+  if (!ok) {
+    std::string err = reader.Error();
+    while (!err.empty() && err.back() == '\n') err.pop_back();
+    fail(path, "cannot read OBJ: " + err);
+  }
+  scanVertexLines(path, src.text, src);
+  const auto& attrib = reader.GetAttrib();
+  const size_t nv = src.vertexLines.size();
+  if (attrib.vertices.size() / 3 != nv)
+    fail(path, "found " + std::to_string(nv) + " 'v' lines but tinyobjloader read " +
+                   std::to_string(attrib.vertices.size() / 3) + " vertices (line continuations are not supported)");
+
+  MeshPart part;
+  part.label = std::filesystem::path(path).filename().string();
+  part.instances.push_back(Eigen::Matrix4d::Identity());
+  part.positions.reserve(nv);
+  bool anyColor = false, allColor = true;
+  for (const auto& l : src.vertexLines) {
+    part.positions.push_back(l.position);
+    anyColor = anyColor || l.hasColor;
+    allColor = allColor && l.hasColor;
+  }
+  if (anyColor) {
+    if (!allColor) doc.warnings.push_back(path + ": some vertices have no color; white used for them");
+    for (const auto& l : src.vertexLines)
+      part.colors.emplace_back(l.hasColor ? l.color.x() : 1.0, l.hasColor ? l.color.y() : 1.0,
+                               l.hasColor ? l.color.z() : 1.0, 1.0);
+  }
+
+  // OBJ indexes normals separately; a per-vertex normal exists only if every vertex has exactly one.
+  std::vector<int> normalOf(nv, -2);
+  bool consistent = !attrib.normals.empty();
+  size_t faceNo = 0;
+  for (const auto& shape : reader.GetShapes()) {
+    size_t offset = 0;
+    for (const auto fv : shape.mesh.num_face_vertices) {
+      ++faceNo;
+      Face f{};
+      for (size_t k = 0; k < fv; ++k) {
+        const auto& idx = shape.mesh.indices[offset + k];
+        if (idx.vertex_index < 0 || static_cast<size_t>(idx.vertex_index) >= nv)
+          fail(path, "face " + std::to_string(faceNo) + " (group '" + shape.name + "') references vertex " +
+                         std::to_string(idx.vertex_index + 1) + " but the file has " + std::to_string(nv) +
+                         " vertices");
+        if (k < 3) f[k] = idx.vertex_index;
+        int& n = normalOf[idx.vertex_index];
+        if (n == -2) n = idx.normal_index;
+        else if (n != idx.normal_index) consistent = false;
+        if (idx.normal_index < 0) consistent = false;
+      }
+      if (fv == 3) part.faces.push_back(f);
+      offset += fv;
+    }
+  }
+  if (part.faces.empty()) fail(path, "the file contains no triangles");
+  for (int n : normalOf) consistent = consistent && n >= 0;
+  if (consistent) {
+    for (int n : normalOf)
+      part.normals.emplace_back(attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]);
+    src.normals = part.normals;
+  }
+  doc.parts.push_back(std::move(part));
+  doc.source = std::move(source);
+  return doc;
+}
+
+std::vector<std::string> writeObjInto(const Document& document, const std::string& path) {
+  const ObjSource& src = document.source->obj;
+  if (document.parts.size() != 1) fail(path, "an OBJ document has exactly one part");
+  const MeshPart& part = document.parts[0];
+  if (part.positions.size() != src.vertexLines.size())
+    fail(path, std::to_string(part.positions.size()) + " positions, the file has " +
+                   std::to_string(src.vertexLines.size()) + "; the vertex layout cannot change when writing back");
+  std::vector<std::string> warnings;
+  if (!part.normals.empty() && part.normals != src.normals)
+    warnings.push_back(path + ": normals are not written to OBJ (its vn lines are kept as they were)");
+  for (const auto& e : part.extras)
+    warnings.push_back(path + ": extra attribute '" + e.name + "' is not stored in OBJ");
+
+  std::string out;
+  out.reserve(src.text.size() + src.text.size() / 8);
+  size_t copied = 0;
+  for (size_t i = 0; i < src.vertexLines.size(); ++i) {
+    const auto& l = src.vertexLines[i];
+    const Eigen::Vector4d* color = part.colors.empty() ? nullptr : &part.colors[i];
+    // Unchanged vertices keep their text, so a round trip without changes is byte-identical.
+    const bool sameColor = color ? (l.hasColor && color->head<3>() == l.color) : !l.hasColor;
+    if (part.positions[i] == l.position && sameColor) continue;
+    out.append(src.text, copied, l.begin - copied);
+    out += vertexLine(part.positions[i], color);
+    copied = l.end;
+  }
+  out.append(src.text, copied, std::string::npos);
+  AtomicFileSet files;
+  files.add(path, std::move(out));
+  files.commit();
+  return warnings;
+}
+
+std::vector<std::string> writeObjFresh(const Document& document, const std::string& path) {
+  std::vector<std::string> warnings;
+  std::ostringstream out;
+  out << "# written by geoshift\n";
+  bool allNormals = true;
+  for (const auto& p : document.parts) allNormals = allNormals && !p.normals.empty();
+  size_t base = 0;
+  static const std::vector<Eigen::Matrix4d> identity{Eigen::Matrix4d::Identity()};
+  for (size_t i = 0; i < document.parts.size(); ++i) {
+    const MeshPart& part = document.parts[i];
+    for (const auto& e : part.extras)
+      warnings.push_back(path + ": extra attribute '" + e.name + "' is not stored in OBJ");
+    const auto& instances = part.instances.empty() ? identity : part.instances;
+    for (size_t k = 0; k < instances.size(); ++k) {
+      const Eigen::Matrix4d& m = instances[k];
+      const Eigen::Matrix3d normalMatrix = m.topLeftCorner<3, 3>().inverse().transpose();
+      const bool mirrored = m.topLeftCorner<3, 3>().determinant() < 0;
+      out << "g part" << i;
+      if (instances.size() > 1) out << "_" << k;
+      out << "\n";
+      for (size_t v = 0; v < part.positions.size(); ++v) {
+        const Vec3 p = (m * part.positions[v].homogeneous()).hnormalized();
+        out << vertexLine(p, part.colors.empty() ? nullptr : &part.colors[v]) << "\n";
+      }
+      if (allNormals)
+        for (const auto& n : part.normals) {
+          const Vec3 t = (normalMatrix * n).normalized();
+          out << "vn " << formatNumber(t.x()) << " " << formatNumber(t.y()) << " " << formatNumber(t.z()) << "\n";
+        }
+      for (auto f : part.faces) {
+        if (mirrored) std::swap(f[1], f[2]);
+        out << "f";
+        for (int c : f) {
+          out << " " << base + c + 1;
+          if (allNormals) out << "//" << base + c + 1;
+        }
+        out << "\n";
+      }
+      base += part.positions.size();
+    }
+  }
+  AtomicFileSet files;
+  files.add(path, out.str());
+  files.commit();
+  return warnings;
+}
+
+}  // namespace geoshift::io
