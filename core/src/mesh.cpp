@@ -256,7 +256,9 @@ struct KeyHash {
       h ^= static_cast<std::uint64_t>(x) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
       h *= 1099511628211ull;
     }
-    return static_cast<size_t>(h);
+    // size_t is 32 bits in wasm: fold the high half in, or float-derived doubles (low mantissa bits
+    // all zero) share one bucket and welding turns quadratic.
+    return static_cast<size_t>(h ^ (h >> 32));
   }
 };
 

@@ -1,0 +1,131 @@
+#include "geoshift/smoothing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "geoshift/error.hpp"
+
+namespace geoshift {
+namespace {
+
+// Who each vertex averages, fixed for the whole call (connectivity does not change). For an interior
+// vertex one entry per outgoing half-edge, with the two vertices opposite that edge (for the
+// cotangent weights); for a boundary vertex its two boundary neighbours only, without opposites.
+struct Stencil {
+  std::vector<int> start;  // vertex v's entries are [start[v], start[v+1])
+  std::vector<int> neighbor;
+  std::vector<int> oppositeA, oppositeB;  // -1 on boundary stencils
+  std::vector<char> boundary;
+};
+
+Stencil buildStencil(const Mesh& mesh) {
+  Stencil s;
+  const int n = mesh.vertexCount();
+  s.start.assign(n + 1, 0);
+  s.boundary.assign(n, 0);
+  s.neighbor.reserve(mesh.halfedgeCount());
+  for (int v = 0; v < n; ++v) {
+    s.start[v] = static_cast<int>(s.neighbor.size());
+    if (mesh.isIsolated(v)) continue;
+    if (mesh.isBoundaryVertex(v)) {
+      // vcglib's AccumulateLaplacianInfo: a border vertex only listens to the border, so open
+      // borders shrink as a 1D polyline instead of being pulled into the surface.
+      s.boundary[v] = 1;
+      int last = -1;
+      mesh.forEachOutgoing(v, [&](int h) { last = h; });
+      for (int nb : {mesh.head(mesh.halfedge(v)), mesh.tail(Mesh::prev(last))}) {
+        s.neighbor.push_back(nb);
+        s.oppositeA.push_back(-1);
+        s.oppositeB.push_back(-1);
+      }
+      continue;
+    }
+    mesh.forEachOutgoing(v, [&](int h) {
+      s.neighbor.push_back(mesh.head(h));
+      s.oppositeA.push_back(mesh.tail(Mesh::prev(h)));
+      s.oppositeB.push_back(mesh.tail(Mesh::prev(mesh.twin(h))));
+    });
+  }
+  s.start[n] = static_cast<int>(s.neighbor.size());
+  return s;
+}
+
+double cotAt(const Vec3& corner, const Vec3& a, const Vec3& b) {
+  const Vec3 u = a - corner, w = b - corner;
+  const double c = u.cross(w).norm();
+  return c > 0 ? u.dot(w) / c : 0.0;
+}
+
+// Δx_i = Σ_j w_ij (x_j − x_i) with Σ_j w_ij = 1 (Taubin 1995, eq. 4).
+void laplacian(const std::vector<Vec3>& x, const Stencil& s, LaplacianWeights weights,
+               std::vector<Vec3>& delta) {
+  const int n = static_cast<int>(x.size());
+  for (int v = 0; v < n; ++v) {
+    const int begin = s.start[v], end = s.start[v + 1];
+    Vec3 sum = Vec3::Zero();
+    double total = 0;
+    for (int e = begin; e < end; ++e) {
+      const Vec3 d = x[s.neighbor[e]] - x[v];
+      double w = 1.0;
+      if (weights != LaplacianWeights::Uniform) {
+        const double len = d.norm();
+        // A boundary stencil is a 1D polyline, whose cotangent Laplacian is 1/|e| as well.
+        if (weights == LaplacianWeights::Fujiwara || s.boundary[v]) {
+          w = len > 0 ? 1.0 / len : 0.0;
+        } else {
+          // (cot α + cot β) / 2, clamped at 0: negative weights across obtuse triangles make the
+          // normalised step leave the convex hull of the ring and can flip triangles.
+          const Vec3& xj = x[s.neighbor[e]];
+          w = std::max(0.0, 0.5 * (cotAt(x[s.oppositeA[e]], x[v], xj) +
+                                   cotAt(x[s.oppositeB[e]], x[v], xj)));
+        }
+      }
+      sum += w * d;
+      total += w;
+    }
+    if (total > 0 && std::isfinite(total)) {
+      delta[v] = sum / total;
+    } else if (end > begin) {
+      // All weights vanished (a collapsed ring): fall back to the umbrella operator.
+      Vec3 mean = Vec3::Zero();
+      for (int e = begin; e < end; ++e) mean += x[s.neighbor[e]] - x[v];
+      delta[v] = mean / static_cast<double>(end - begin);
+    } else {
+      delta[v] = Vec3::Zero();  // isolated vertex: does not move
+    }
+  }
+}
+
+}  // namespace
+
+void taubinSmooth(Mesh& mesh, const TaubinOptions& options, const Progress& progress) {
+  if (options.iterations < 0) {
+    throw InputError("Taubin: iterations must be >= 0 (got " + std::to_string(options.iterations) +
+                     ")");
+  }
+  if (!(options.lambda > 0) || !std::isfinite(options.lambda)) {
+    throw InputError("Taubin: lambda must be > 0 (got " + std::to_string(options.lambda) + ")");
+  }
+  // μ < −λ < 0 makes the pass-band k_PB = 1/λ + 1/μ positive: the low frequencies pass and the
+  // mesh does not shrink (Taubin 1995, section 4).
+  if (!(options.mu < -options.lambda) || !std::isfinite(options.mu)) {
+    throw InputError("Taubin: mu must be < -lambda (got mu " + std::to_string(options.mu) +
+                     ", lambda " + std::to_string(options.lambda) + ")");
+  }
+  const Stencil stencil = buildStencil(mesh);
+  // Work on a copy: a cancelled call must leave the mesh as it was.
+  std::vector<Vec3> x = mesh.positions();
+  std::vector<Vec3> delta(x.size(), Vec3::Zero());
+  for (int it = 0; it < options.iterations; ++it) {
+    progress.step(static_cast<double>(it) / options.iterations, "taubin");
+    for (double factor : {options.lambda, options.mu}) {
+      laplacian(x, stencil, options.weights, delta);
+      for (size_t v = 0; v < x.size(); ++v) x[v] += factor * delta[v];
+    }
+  }
+  progress.step(1.0, "taubin");
+  mesh.positions() = std::move(x);
+}
+
+}  // namespace geoshift

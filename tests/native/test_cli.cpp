@@ -1,0 +1,162 @@
+// The geoshift command-line tool, run as a user runs it: files in, files and messages out.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "geoshift/io.hpp"
+#include "geoshift/shapes.hpp"
+#include "support.hpp"
+
+using namespace geoshift;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Run geoshiftCli(const std::string& args) {
+  static int counter = 0;
+  const fs::path dir = fs::temp_directory_path() / "geoshift-test-cli-io";
+  fs::create_directories(dir);
+  const fs::path out = dir / ("out" + std::to_string(counter) + ".txt");
+  const fs::path err = dir / ("err" + std::to_string(counter++) + ".txt");
+  const std::string cmd = std::string("\"") + GEOSHIFT_CLI + "\" " + args + " >\"" + out.string() + "\" 2>\"" +
+                          err.string() + "\" </dev/null";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+void writeOff(const fs::path& path, const TriangleSoup& s) {
+  std::ofstream o(path);
+  o.precision(17);
+  o << "OFF\n" << s.positions.size() << " " << s.faces.size() << " 0\n";
+  for (const Vec3& p : s.positions) o << p.x() << " " << p.y() << " " << p.z() << "\n";
+  for (const Face& f : s.faces) o << "3 " << f[0] << " " << f[1] << " " << f[2] << "\n";
+}
+
+std::string q(const fs::path& p) { return "\"" + p.string() + "\""; }
+
+}  // namespace
+
+TEST_CASE("cli: info reports counts, boundary loops and defects", "[cli]") {
+  const fs::path dir = test::tempDir("cli-info");
+  writeOff(dir / "grid.off", shapes::grid(5));
+  Run r = geoshiftCli("info " + q(dir / "grid.off"));
+  REQUIRE(r.code == 0);
+  REQUIRE_THAT(r.out, Catch::Contains("vertices            25"));
+  REQUIRE_THAT(r.out, Catch::Contains("boundary loops      1 (lengths 16)"));
+  REQUIRE_THAT(r.out, Catch::Contains("average edge length"));
+
+  TriangleSoup bad = shapes::cube();
+  bad.faces.push_back({0, 0, 1});
+  writeOff(dir / "bad.off", bad);
+  r = geoshiftCli("info " + q(dir / "bad.off"));
+  REQUIRE(r.code == 0);
+  REQUIRE_THAT(r.out, Catch::Contains("degenerate faces    1 (repeated index 1"));
+  REQUIRE_THAT(r.err, Catch::Contains("face 12 (0, 0, 1)"));
+}
+
+TEST_CASE("cli: noise is reproducible by seed, smoothing brings it back towards the clean mesh", "[cli]") {
+  const fs::path dir = test::tempDir("cli-noise");
+  writeOff(dir / "sphere.off", shapes::icosphere(3));
+  const std::string in = q(dir / "sphere.off");
+  REQUIRE(geoshiftCli("noise " + in + " -o " + q(dir / "a.off") + " --seed 7 --amount 0.3").code == 0);
+  REQUIRE(geoshiftCli("noise " + in + " -o " + q(dir / "b.off") + " --seed 7 --amount 0.3").code == 0);
+  REQUIRE(geoshiftCli("noise " + in + " -o " + q(dir / "c.off") + " --seed 8 --amount 0.3").code == 0);
+  REQUIRE(slurp(dir / "a.off") == slurp(dir / "b.off"));
+  REQUIRE(slurp(dir / "a.off") != slurp(dir / "c.off"));
+
+  REQUIRE(geoshiftCli("smooth " + q(dir / "a.off") + " -o " + q(dir / "s.off") + " --iterations 5").code == 0);
+  auto rmsAgainstClean = [&](const fs::path& p) {
+    Run r = geoshiftCli("compare --json " + q(p) + " " + in);
+    REQUIRE(r.code == 0);
+    return nlohmann::json::parse(r.out)["perVertexRms"].get<double>();
+  };
+  const double noisy = rmsAgainstClean(dir / "a.off"), smoothed = rmsAgainstClean(dir / "s.off");
+  REQUIRE(noisy > 0);
+  REQUIRE(smoothed < 0.8 * noisy);
+}
+
+TEST_CASE("cli: compare gives zero for a mesh against itself and the offset of a shifted plane", "[cli]") {
+  const fs::path dir = test::tempDir("cli-compare");
+  TriangleSoup plane = shapes::grid(9);
+  writeOff(dir / "plane.off", plane);
+  for (Vec3& p : plane.positions) p.z() += 0.01;
+  writeOff(dir / "shifted.off", plane);
+  Run r = geoshiftCli("compare --json " + q(dir / "plane.off") + " " + q(dir / "plane.off"));
+  REQUIRE(r.code == 0);
+  auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["resultToReference"]["rms"].get<double>() == Approx(0).margin(1e-12));
+  REQUIRE(j["meanNormalAngleDeg"].get<double>() == Approx(0).margin(1e-9));
+  r = geoshiftCli("compare --json " + q(dir / "shifted.off") + " " + q(dir / "plane.off"));
+  j = nlohmann::json::parse(r.out);
+  REQUIRE(j["resultToReference"]["rms"].get<double>() == Approx(0.01).epsilon(1e-9));
+  REQUIRE(j["referenceToResult"]["max"].get<double>() == Approx(0.01).epsilon(1e-9));
+  REQUIRE(j["perVertexRms"].get<double>() == Approx(0.01).epsilon(1e-9));
+  r = geoshiftCli("compare " + q(dir / "shifted.off") + " " + q(dir / "plane.off"));
+  REQUIRE_THAT(r.out, Catch::Contains("result -> reference") && Catch::Contains("hausdorff"));
+}
+
+TEST_CASE("cli: curvature writes _CURVATURE and COLOR_0 into a glb", "[cli]") {
+  const fs::path dir = test::tempDir("cli-curvature");
+  const double R = 2.0;
+  writeOff(dir / "sphere.off", shapes::icosphere(4, R));
+  REQUIRE(geoshiftCli("curvature " + q(dir / "sphere.off") + " -o " + q(dir / "k.glb") + " --kind mean").code == 0);
+  const Document doc = readDocument((dir / "k.glb").string());
+  REQUIRE(doc.parts.size() == 1);
+  const MeshPart& part = doc.parts[0];
+  REQUIRE(part.colors.size() == part.positions.size());
+  const auto it = std::find_if(part.extras.begin(), part.extras.end(),
+                               [](const ExtraAttribute& e) { return e.name == "_CURVATURE"; });
+  REQUIRE(it != part.extras.end());
+  REQUIRE(it->values.size() == part.positions.size());
+  for (double h : it->values) REQUIRE(h == Approx(1 / R).epsilon(0.05));
+}
+
+TEST_CASE("cli: errors name the problem, exit non-zero and write nothing", "[cli][errors]") {
+  const fs::path dir = test::tempDir("cli-errors");
+  Run r = geoshiftCli("info " + q(dir / "missing.obj"));
+  REQUIRE(r.code == 1);
+  REQUIRE_THAT(r.err, Catch::Contains("missing.obj"));
+
+  TriangleSoup s = shapes::tetrahedron();
+  s.faces[2][1] = 17;
+  writeOff(dir / "range.off", s);
+  r = geoshiftCli("smooth " + q(dir / "range.off") + " -o " + q(dir / "out.off"));
+  REQUIRE(r.code == 1);
+  REQUIRE_THAT(r.err, Catch::Contains("17"));
+  REQUIRE_FALSE(fs::exists(dir / "out.off"));
+
+  writeOff(dir / "ok.off", shapes::tetrahedron());
+  r = geoshiftCli("smooth " + q(dir / "ok.off") + " -o " + q(dir / "out.xyz"));
+  REQUIRE(r.code == 1);
+  REQUIRE_THAT(r.err, Catch::Contains("out.xyz"));
+  REQUIRE_FALSE(fs::exists(dir / "out.xyz"));
+
+  r = geoshiftCli("smooth " + q(dir / "ok.off") + " -o " + q(dir / "out.off") + " --lambda -1");
+  REQUIRE(r.code == 1);
+  REQUIRE_FALSE(fs::exists(dir / "out.off"));
+
+  r = geoshiftCli("noise " + q(dir / "ok.off") + " -o " + q(dir / "n.off") + " --dist sideways");
+  REQUIRE(r.code != 0);
+  REQUIRE_FALSE(fs::exists(dir / "n.off"));
+  REQUIRE(geoshiftCli("frobnicate").code != 0);
+}

@@ -1,0 +1,44 @@
+// The pthreads flavour loads under Node and gives bit-identical results to the single-threaded
+// one: the core's parallel loops must not change any sum's order with the thread count.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+
+import { loadGeoshift, readOff, saddle, sphereOff, unweldedCube } from './support.mjs';
+
+let single;
+let threaded;
+before(async () => {
+  single = await loadGeoshift();
+  threaded = await loadGeoshift({ threads: true });
+});
+// Its worker pool would keep the test process alive.
+after(() => threaded?.close());
+
+function meshes() {
+  const list = [['unwelded cube', unweldedCube()], ['jittered saddle', saddle(40)]];
+  if (fs.existsSync(sphereOff)) list.push(['sphere.off', readOff(sphereOff)]);
+  return list;
+}
+
+test('the threaded module really runs with threads', () => {
+  assert.ok(threaded.PThread, 'geoshift_node_mt was built without -pthread');
+  assert.ok(threaded.PThread.unusedWorkers.length + threaded.PThread.runningWorkers.length >= 2,
+    'the pthread pool did not start');
+});
+
+for (const [name, mesh] of meshes()) {
+  test(`threaded and single-threaded agree bit for bit: ${name}`, () => {
+    const a = single.processMesh(mesh.positions, mesh.indices);
+    const b = threaded.processMesh(mesh.positions, mesh.indices);
+    assert.equal(a.ok, true, a.error);
+    assert.deepStrictEqual(b, a);
+    // deepStrictEqual compares float arrays with ===, blind to -0 vs 0 and failing on NaN: compare
+    // the bytes as well.
+    for (const [key, value] of Object.entries(a)) {
+      if (ArrayBuffer.isView(value)) {
+        assert.ok(Buffer.from(b[key].buffer).equals(Buffer.from(value.buffer)), `${key} differs in its bits`);
+      }
+    }
+  });
+}
