@@ -9,7 +9,9 @@ export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)
 // GEOSHIFT_WASM_DIR runs the tests against another build (another exception mode, a debug build).
 export const wasmDir = process.env.GEOSHIFT_WASM_DIR ?? path.join(repoRoot, 'build/wasm-release/wasm');
 export const nativeCli = path.join(repoRoot, 'build/native-release/cli/geoshift');
-export const sphereOff = '/work/shared/data/cgal_debian_libcgal_demo/data/meshes/sphere.off';
+// ../shared/data beside the repository (GEOSHIFT_SHARED_DATA overrides); tests skip when absent.
+export const sharedData = process.env.GEOSHIFT_SHARED_DATA || path.join(repoRoot, '../shared/data');
+export const sphereOff = path.join(sharedData, 'cgal_debian_libcgal_demo/data/meshes/sphere.off');
 
 const require = createRequire(import.meta.url);
 
