@@ -21,6 +21,18 @@ void addInOut(CLI::App* sub, InOut& io) {
   sub->add_option("-o,--output", io.out, "output mesh; format from its extension")->required();
 }
 
+// Reads IN, moves the vertices of every part's welded mesh with `move`, writes OUT.
+template <class Move>
+void movePositions(const InOut& io, Move move) {
+  Document doc = load(io.in);
+  for (MeshPart& part : doc.parts) {
+    MeshBuild b = buildPart(doc, part);
+    move(b.mesh);
+    writeBack(part, b);
+  }
+  save(doc, io.out);
+}
+
 }  // namespace
 
 Command addNoise(CLI::App& app) {
@@ -42,13 +54,7 @@ Command addNoise(CLI::App& app) {
       ->transform(CLI::CheckedTransformer(dirs, CLI::ignore_case));
   sub->add_option("--seed", a->noise.seed, "random seed (same seed, same noise, natively and in wasm)")->capture_default_str();
   return {sub, [a] {
-            Document doc = load(a->in);
-            for (MeshPart& part : doc.parts) {
-              MeshBuild b = buildPart(doc, part);
-              addNoise(b.mesh, a->noise);
-              writeBack(part, b);
-            }
-            save(doc, a->out);
+            movePositions(*a, [&](Mesh& mesh) { addNoise(mesh, a->noise); });
             std::cerr << "geoshift: noise amount " << a->noise.amount << " AEL, seed " << a->noise.seed
                       << " -> " << a->out << "\n";
           }};
@@ -70,15 +76,7 @@ Command addSmooth(CLI::App& app) {
       {"uniform", LaplacianWeights::Uniform}, {"fujiwara", LaplacianWeights::Fujiwara}, {"cotangent", LaplacianWeights::Cotangent}};
   sub->add_option("--weights", a->taubin.weights, "Laplacian weights: uniform, fujiwara (1/length), cotangent")
       ->transform(CLI::CheckedTransformer(weights, CLI::ignore_case));
-  return {sub, [a] {
-            Document doc = load(a->in);
-            for (MeshPart& part : doc.parts) {
-              MeshBuild b = buildPart(doc, part);
-              taubinSmooth(b.mesh, a->taubin);
-              writeBack(part, b);
-            }
-            save(doc, a->out);
-          }};
+  return {sub, [a] { movePositions(*a, [&](Mesh& mesh) { taubinSmooth(mesh, a->taubin); }); }};
 }
 
 Command addCurvature(CLI::App& app) {
