@@ -12,6 +12,7 @@
 #include "support.hpp"
 
 using namespace geoshift;
+using geoshift::test::slurp;
 namespace fs = std::filesystem;
 
 namespace {
@@ -20,13 +21,6 @@ struct Run {
   int code = -1;
   std::string out, err;
 };
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 Run geoshiftCli(const std::string& args) {
   static int counter = 0;
