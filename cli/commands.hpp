@@ -20,6 +20,9 @@ Command addNoise(CLI::App& app);
 Command addSmooth(CLI::App& app);
 Command addCurvature(CLI::App& app);
 Command addCompare(CLI::App& app);
+Command addGeodesic(CLI::App& app);
+Command addLogMap(CLI::App& app);
+Command addExpMap(CLI::App& app);
 
 // --- shared by the commands ---
 

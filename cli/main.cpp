@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "geoshift 0.1.0");
   using namespace geoshift::cli;
   const std::vector<Command> commands = {addInfo(app), addNoise(app), addSmooth(app),
-                                         addCurvature(app), addCompare(app)};
+                                         addCurvature(app), addCompare(app),  addGeodesic(app),
+                                         addLogMap(app),    addExpMap(app)};
 
   try {
     app.parse(argc, argv);

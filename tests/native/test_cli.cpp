@@ -1,54 +1,16 @@
 // The geoshift command-line tool, run as a user runs it: files in, files and messages out.
 #include <catch2/catch.hpp>
 
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
 
 #include "geoshift/io.hpp"
 #include "geoshift/shapes.hpp"
-#include "support.hpp"
+#include "cli_support.hpp"
 
 using namespace geoshift;
-using geoshift::test::slurp;
 namespace fs = std::filesystem;
 
-namespace {
-
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
-
-Run geoshiftCli(const std::string& args) {
-  static int counter = 0;
-  const fs::path dir = fs::temp_directory_path() / "geoshift-test-cli-io";
-  fs::create_directories(dir);
-  const fs::path out = dir / ("out" + std::to_string(counter) + ".txt");
-  const fs::path err = dir / ("err" + std::to_string(counter++) + ".txt");
-  const std::string cmd = std::string("\"") + GEOSHIFT_CLI + "\" " + args + " >\"" + out.string() + "\" 2>\"" +
-                          err.string() + "\" </dev/null";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
-void writeOff(const fs::path& path, const TriangleSoup& s) {
-  std::ofstream o(path);
-  o.precision(17);
-  o << "OFF\n" << s.positions.size() << " " << s.faces.size() << " 0\n";
-  for (const Vec3& p : s.positions) o << p.x() << " " << p.y() << " " << p.z() << "\n";
-  for (const Face& f : s.faces) o << "3 " << f[0] << " " << f[1] << " " << f[2] << "\n";
-}
-
-std::string q(const fs::path& p) { return "\"" + p.string() + "\""; }
-
-}  // namespace
+using namespace geoshift::test;
 
 TEST_CASE("cli: info reports counts, boundary loops and defects", "[cli]") {
   const fs::path dir = test::tempDir("cli-info");

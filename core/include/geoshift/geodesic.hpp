@@ -118,6 +118,9 @@ struct ExpMapResult {
 
 // Walks the tangent vector (in the start point's frame) along a straightest geodesic: straight
 // inside faces, unfolded across edges, leaving a vertex with equal angle sums left and right.
+// Stops at the boundary (hitBoundary); from a boundary vertex, a polar angle outside [0, θ(v)]
+// points off the surface and returns the start. Throws InputError for a face out of range or a
+// non-finite vector.
 ExpMapResult expMap(const SurfaceGeometry& geometry, const SurfacePoint& start, const Vec2& vector,
                     const ExpMapOptions& options = {});
 
