@@ -223,7 +223,7 @@ Command addExpMap(CLI::App& app) {
             const int face = l.mesh().inputFace(r.end.face);
             const Vec3 p = r.end.position(l.mesh());
             if (a->json) {
-              const nlohmann::json j = {{"face", face},
+              const nlohmann::ordered_json j = {{"face", face},
                                         {"bary", {r.end.bary[0], r.end.bary[1], r.end.bary[2]}},
                                         {"point", {p.x(), p.y(), p.z()}},
                                         {"hitBoundary", r.hitBoundary}};
