@@ -31,9 +31,7 @@ double averageEdgeLength(const Mesh& mesh) {
 std::vector<Vec3> faceNormals(const Mesh& mesh) {
   std::vector<Vec3> normals(mesh.faceCount(), Vec3::Zero());
   for (int f = 0; f < mesh.faceCount(); ++f) {
-    const Face& t = mesh.face(f);
-    const Vec3 n = (mesh.position(t[1]) - mesh.position(t[0]))
-                       .cross(mesh.position(t[2]) - mesh.position(t[0]));
+    const Vec3 n = faceCross(mesh, f);
     const double len = n.norm();
     if (len > 0) normals[f] = n / len;
   }
@@ -43,10 +41,7 @@ std::vector<Vec3> faceNormals(const Mesh& mesh) {
 std::vector<double> faceAreas(const Mesh& mesh) {
   std::vector<double> areas(mesh.faceCount());
   for (int f = 0; f < mesh.faceCount(); ++f) {
-    const Face& t = mesh.face(f);
-    areas[f] = 0.5 * (mesh.position(t[1]) - mesh.position(t[0]))
-                         .cross(mesh.position(t[2]) - mesh.position(t[0]))
-                         .norm();
+    areas[f] = 0.5 * faceCross(mesh, f).norm();
   }
   return areas;
 }
@@ -57,8 +52,7 @@ std::vector<Vec3> vertexNormals(const Mesh& mesh) {
   std::vector<Vec3> sums(mesh.vertexCount(), Vec3::Zero());
   for (int f = 0; f < mesh.faceCount(); ++f) {
     const Face& t = mesh.face(f);
-    const Vec3 n = (mesh.position(t[1]) - mesh.position(t[0]))
-                       .cross(mesh.position(t[2]) - mesh.position(t[0]));
+    const Vec3 n = faceCross(mesh, f);
     const double len = n.norm();
     if (!(len > 0)) continue;
     const Vec3 unit = n / len;

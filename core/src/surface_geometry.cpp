@@ -80,10 +80,8 @@ SurfaceGeometry::SurfaceGeometry(const Mesh& mesh) : mesh_(mesh) {
   faceAxis_.resize(nf);
   for (int f = 0; f < nf; ++f) {
     const Face& t = mesh.face(f);
-    const Vec3 e = mesh.position(t[1]) - mesh.position(t[0]);
-    const Vec3 n = e.cross(mesh.position(t[2]) - mesh.position(t[0]));
-    faceNormal_[f] = n.normalized();
-    faceAxis_[f] = e.normalized();
+    faceNormal_[f] = faceCross(mesh, f).normalized();
+    faceAxis_[f] = (mesh.position(t[1]) - mesh.position(t[0])).normalized();
   }
   angleSum_.assign(nv, 0.0);
   angleScale_.assign(nv, 1.0);

@@ -12,6 +12,13 @@ namespace geoshift {
 // Throws InputError for a mesh with no edge of positive length.
 double averageEdgeLength(const Mesh& mesh);
 
+// (b - a) × (c - a) for face f = (a, b, c): twice its area along its normal.
+inline Vec3 faceCross(const Mesh& mesh, int f) {
+  const Face& t = mesh.face(f);
+  const Vec3& a = mesh.position(t[0]);
+  return (mesh.position(t[1]) - a).cross(mesh.position(t[2]) - a);
+}
+
 // Unit normal per face (zero vector for a face of zero area).
 std::vector<Vec3> faceNormals(const Mesh& mesh);
 std::vector<double> faceAreas(const Mesh& mesh);
