@@ -11,147 +11,114 @@
 // polar coordinate. Isolated vertices are never reached.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <sstream>
 
 #include "geoshift/error.hpp"
 #include "geoshift/geodesic.hpp"
+#include "logmap_detail.hpp"
 
 namespace geoshift {
-namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2 * std::numbers::pi;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kEps = 1e-12;       // relative improvement a new U needs to be accepted (§1 State)
-constexpr double kTinyEdge = 1e-11;  // shorter edges cannot place σ (§1 fallbacks: d < 1e-11)
-// A face point closer than this (barycentric) to an edge also seeds the twin face's apex: seen from
-// a point on the edge its ends are π apart, where the angle wrap rule cannot pick a side (§1).
-constexpr double kEdgeBary = 1e-6;
-
-// One face as everything a relaxation needs, in one 64-byte record: the front touches a few
-// hundred faces scattered over a large mesh, so a face should cost one cache line.
-struct alignas(64) FaceRecord {
-  int vertex[3];  // tail of half-edge 3f + k (the fans come from State::fan, not from twins)
-  double length[3];  // of half-edge 3f + k
-  double twiceArea;
-};
-
-// The face of half-edge k (j = tail, k = head, i = apex) unfolded onto x_j = (0,0), x_k = (d,0),
-// x_i = (ax, ay), ay > 0 (faces are counter-clockwise, so the apex is on the left).
-struct Unfolded {
-  double d, inv2d, ax, ay, lj, lk;  // lj = |x_i − x_j|, lk = |x_i − x_k|
-};
-
-inline Unfolded unfold(const FaceRecord& r, int k) {
-  const double d = r.length[k], lj = r.length[k == 0 ? 2 : k - 1], lk = r.length[k == 2 ? 0 : k + 1];
-  const double inv2d = 0.5 / d;
-  return {d, inv2d, (lj - lk) * (lj + lk) * inv2d + 0.5 * d, 2 * r.twiceArea * inv2d, lj, lk};
-}
-
-// 16 × area² of a triangle with sides x, y, z by the stable Heron product (Kahan): sort a ≥ b ≥ c,
-// then (a+(b+c))(c−(a−b))(c+(a−b))(a+(b−c)); negative when the sides violate the triangle
-// inequality, which is the first fallback of §1.
-inline double heron16(double x, double y, double z) {
-  const double a = std::max(std::max(x, y), z);
-  const double c = std::min(std::min(x, y), z);
-  const double b = std::max(std::min(x, y), std::min(std::max(x, y), z));
-  return (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
-}
-
-// atan on [0, 1]: Cephes' atan (range split at 0.66 to (x − 1)/(x + 1) + π/4, then a 4/5 rational
-// in x²), within 1 ulp of std::atan. glibc's atan2 is correctly rounded and took ~500 instructions
-// a call here, the largest single cost of an update; this is ~30 and a division.
-inline double atanUnit(double x) {
-  constexpr double P0 = -8.750608600031904122785E-1, P1 = -1.615753718733365076637E1,
-                   P2 = -7.500855792314704667340E1, P3 = -1.228866684490136173410E2,
-                   P4 = -6.485021904942025371773E1;
-  constexpr double Q0 = 2.485846490142306297962E1, Q1 = 1.650270098316988542046E2,
-                   Q2 = 4.328810604912902668951E2, Q3 = 4.853903996359136964868E2,
-                   Q4 = 1.945506571482613964425E2;
-  constexpr double kMoreBits = 6.123233995736765886130E-17;  // π/4 − double(π/4), times 2
-  double y = 0, extra = 0;
-  if (x > 0.66) {
-    y = kPi / 4;
-    extra = 0.5 * kMoreBits;
-    x = (x - 1) / (x + 1);
-  }
-  const double z = x * x;
-  const double p = (((P0 * z + P1) * z + P2) * z + P3) * z + P4;
-  const double q = ((((z + Q0) * z + Q1) * z + Q2) * z + Q3) * z + Q4;
-  return y + (x * (z * p / q) + x + extra);
-}
-
-// Unsigned angle between two plane vectors from (|cross|, dot), as atan2 (accurate near 0 and π
-// where acos is not): the smaller of the two over the larger keeps atan's argument in [0, 1].
-inline double angleBetween(double ux, double uy, double vx, double vy) {
-  const double y = std::abs(ux * vy - uy * vx), x = ux * vx + uy * vy, ax = std::abs(x);
-  double a = y <= ax ? atanUnit(y / ax) : kPi / 2 - atanUnit(ax / y);
-  if (y == 0 && ax == 0) a = 0;  // atan2(0, ±0): zero vectors (σ at x_j is excluded upstream)
-  return x < 0 ? kPi - a : a;
-}
-
-struct Queued {
-  double u;
-  int vertex;
-};
-
-inline double wrapTwoPi(double t) {
-  if (t < 0) t += kTwoPi;
-  if (t >= kTwoPi) t -= kTwoPi;
-  return t;
-}
-
-}  // namespace
+using namespace logmap_detail;  // private to this file and logmap_detail.hpp
 
 struct LogMap::State {
   const Mesh& mesh;
-  std::vector<FaceRecord> faces;
-  std::vector<double> U, theta;
-  std::vector<int> touched;                     // vertices with a finite U, reset by the next call
+  // The solver works in its own vertex numbering, sorted along a Morton curve of the positions, so
+  // that a front (a small disc of the surface) reads a few runs of neighbouring values and fans
+  // instead of lines scattered over a large mesh. Mesh ids go in only at the seeds (inner) and come
+  // back only in the output (outer).
+  std::vector<int> inner, outer;
+  // U and Θ of a vertex side by side: an update reads both of its edge's ends.
+  struct Value {
+    double U, theta;
+  };
+  std::vector<Value> value;                     // by internal vertex
+  std::vector<int> touched;                     // internal vertices with a finite U, reset by the next call
   std::vector<Queued> heap;                     // binary min-heap on U with lazy deletion
-  std::vector<int> pending;                     // faces around c that had no known corner yet
+  std::vector<int> pending;                     // fan faces around c that had no known corner yet
   std::vector<LogMapEntry> entries;
-  // Each vertex's outgoing half-edges in the counter-clockwise order of the run() loop, from
-  // halfedge(v): a pop reads them as one array instead of chasing twins face by face, so the
-  // (cold) face records around it are fetched in parallel rather than one miss after another.
-  std::vector<int> fanStart, fan;
+  // Each vertex's faces in the counter-clockwise order of its outgoing half-edges from halfedge(v),
+  // as the run() loop visits them; by internal vertex.
+  std::vector<int> fanStart;
+  std::vector<FanFace> fan;
   double radius = 0;
   bool periodic = true;  // angles live on a circle (not at a boundary vertex source)
 
-  explicit State(const SurfaceGeometry& g)
-      : mesh(g.mesh()), U(g.mesh().vertexCount(), kInf), theta(g.mesh().vertexCount(), 0.0) {
-    const int nf = mesh.faceCount();
-    faces.resize(nf);
-    for (int f = 0; f < nf; ++f) {
-      FaceRecord& r = faces[f];
-      for (int k = 0; k < 3; ++k) {
-        const int h = 3 * f + k;
-        r.vertex[k] = mesh.tail(h);
-        r.length[k] = g.length(h);
-      }
-      // From a corner's sine (atan2-accurate angles), not Heron: needles keep their height.
-      r.twiceArea = r.length[0] * r.length[2] * std::sin(g.cornerAngle(3 * f));
-    }
-    const int nv = mesh.vertexCount();
+  explicit State(const SurfaceGeometry& g) : mesh(g.mesh()) {
+    const int nv = mesh.vertexCount(), nf = mesh.faceCount();
+    renumber();
+    value.assign(nv, Value{kInf, 0.0});
+    std::vector<double> twiceArea(nf);
+    for (int f = 0; f < nf; ++f) twiceArea[f] = faceRecord(g, f).twiceArea;
     fanStart.resize(nv + 1);
     fan.reserve(3 * static_cast<size_t>(nf));
-    for (int v = 0; v < nv; ++v) {
-      fanStart[v] = static_cast<int>(fan.size());
-      const int start = mesh.halfedge(v);
+    for (int c = 0; c < nv; ++c) {
+      fanStart[c] = static_cast<int>(fan.size());
+      const int start = mesh.halfedge(outer[c]);
       if (start < 0) continue;  // isolated: never reached
       int h = start;
       do {
-        fan.push_back(h);
+        const int next = Mesh::next(h), prev = Mesh::prev(h);
+        FanFace e;
+        e.head = inner[mesh.head(h)];
+        e.apex = inner[mesh.tail(prev)];
+        e.dHead = g.length(h);
+        e.dApex = g.length(prev);
+        e.dOpp = g.length(next);
+        e.twiceArea = twiceArea[h / 3];
+        e.inv2dHead = 0.5 / e.dHead;
+        e.inv2dApex = 0.5 / e.dApex;
+        fan.push_back(e);
         h = mesh.ccwOutgoing(h);
       } while (h >= 0 && h != start);
     }
     fanStart[nv] = static_cast<int>(fan.size());
   }
 
+  // Morton (Z-order) key of each vertex's position quantised to 21 bits an axis over the bounding
+  // box; non-finite coordinates go to cell 0 (any order is correct, only locality is at stake).
+  void renumber() {
+    const int nv = mesh.vertexCount();
+    Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
+    for (int v = 0; v < nv; ++v)
+      if (mesh.position(v).allFinite()) {
+        lo = lo.cwiseMin(mesh.position(v));
+        hi = hi.cwiseMax(mesh.position(v));
+      }
+    const auto spread = [](std::uint64_t x) {  // 21 bits to every third of 63
+      x &= 0x1fffff;
+      x = (x | x << 32) & 0x1f00000000ffffULL;
+      x = (x | x << 16) & 0x1f0000ff0000ffULL;
+      x = (x | x << 8) & 0x100f00f00f00f00fULL;
+      x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+      x = (x | x << 2) & 0x1249249249249249ULL;
+      return x;
+    };
+    std::vector<std::pair<std::uint64_t, int>> key(nv);
+    for (int v = 0; v < nv; ++v) {
+      std::uint64_t code = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double ext = hi[a] - lo[a], x = mesh.position(v)[a];
+        double q = ext > 0 ? (x - lo[a]) / ext * 2097151.0 : 0.0;
+        if (!(q >= 0)) q = 0;  // also NaN
+        code |= spread(static_cast<std::uint64_t>(std::min(q, 2097151.0))) << a;
+      }
+      key[v] = {code, v};
+    }
+    std::sort(key.begin(), key.end());
+    inner.resize(nv);
+    outer.resize(nv);
+    for (int c = 0; c < nv; ++c) {
+      outer[c] = key[c].second;
+      inner[key[c].second] = c;
+    }
+  }
+
   void begin(double r, bool circle) {
-    for (int v : touched) U[v] = kInf;
+    for (int v : touched) value[v].U = kInf;
     touched.clear();
     heap.clear();
     entries.clear();
@@ -160,9 +127,14 @@ struct LogMap::State {
   }
 
   void assign(int v, double u, double t) {
-    if (U[v] == kInf) touched.push_back(v);
-    U[v] = u;
-    theta[v] = t;
+    if (value[v].U == kInf) {
+      touched.push_back(v);
+      // v pops later, after a heap's worth of other work: start fetching its fan now, so that the
+      // pop does not wait on memory (the order of pops is data-dependent, the hardware cannot guess it).
+      for (int f = fanStart[v], last = fanStart[v + 1]; f < last; ++f) __builtin_prefetch(&fan[f]);
+    }
+    value[v].U = u;
+    value[v].theta = t;
     // Every value is queued, also in the ring just outside R: see run() for what that ring may do.
     // Binary heap sifting a hole and comparing keys only (ties need no order: lazy deletion).
     size_t hole = heap.size();
@@ -194,17 +166,17 @@ struct LogMap::State {
     return top;
   }
 
-  void seed(int v, double u, double t) {
-    if (u < U[v]) assign(v, u, wrapTwoPi(t));
+  void seed(int meshVertex, double u, double t) {
+    const int v = inner[meshVertex];
+    if (u < value[v].U) assign(v, u, wrapTwoPi(t));
   }
 
-  // Updates i, the apex of half-edge 3f + k, from its edge (j, k) (§1 triangle update).
-  [[gnu::always_inline]] void update(const FaceRecord& r, int k) {
-    const int j = r.vertex[k], kk = r.vertex[k == 2 ? 0 : k + 1], i = r.vertex[k == 0 ? 2 : k - 1];
-    const double Uj = U[j], Uk = U[kk], Ui = U[i];
+  // Updates i from the edge (j, kk) of the counter-clockwise face (j, kk, i), unfolded as e
+  // (§1 triangle update).
+  [[gnu::always_inline]] void update(int j, int kk, int i, const Unfolded& e) {
+    const double Uj = value[j].U, Uk = value[kk].U, Ui = value[i].U;
     // U = 0 would divide in the angle at σ (and the ring of a vertex source is exact already).
     if (Uj == 0 || Uk == 0 || Uj == kInf || Uk == kInf || Ui == 0) return;
-    const Unfolded e = unfold(r, k);
     double u = kInf, sx = 0, sy = 0, wx = 0, wy = 0;
     bool through = false;
     if (e.d >= kTinyEdge) {
@@ -236,9 +208,9 @@ struct LogMap::State {
     if (!(Ui > u * (1 + kEps))) return;  // U_old / u_new > 1 + eps, written without the division
     double t;
     if (!through) {
-      t = viaJ ? theta[j] : theta[kk];
+      t = viaJ ? value[j].theta : value[kk].theta;
     } else {
-      double tj = theta[j], tk = theta[kk];
+      double tj = value[j].theta, tk = value[kk].theta;
       if (std::abs(tj - tk) < kEps) {
         t = tj;
       } else {
@@ -254,43 +226,40 @@ struct LogMap::State {
     assign(i, u, t);
   }
 
-  // Face 3f + k around c = tail: updates its apex from (c, head) and its head from (apex, c), each
-  // only from a partner below `partnerLimit`. Returns false when neither other corner is known yet.
-  bool relax(int h, double partnerLimit) {
-    const FaceRecord& r = faces[h / 3];
-    const int k = h % 3, prev = k == 0 ? 2 : k - 1;
-    const double Uhead = U[r.vertex[k == 2 ? 0 : k + 1]], Uapex = U[r.vertex[prev]];
+  // Face (c, head, apex) of c's fan: updates its apex from (c, head) and its head from (apex, c),
+  // each only from a partner below `partnerLimit`. Returns false when neither other corner is known yet.
+  bool relax(int c, const FanFace& f, double partnerLimit) {
+    const double Uhead = value[f.head].U, Uapex = value[f.apex].U;
     if (Uhead == kInf && Uapex == kInf) return false;
     // Only from corners known on entry: one first derived just now from the other would only feed back.
-    if (Uhead < partnerLimit) update(r, k);
-    if (Uapex < partnerLimit) update(r, prev);
+    if (Uhead < partnerLimit) update(c, f.head, f.apex, unfold(f.dHead, f.inv2dHead, f.dApex, f.dOpp, f.twiceArea));
+    if (Uapex < partnerLimit) update(f.apex, c, f.head, unfold(f.dApex, f.inv2dApex, f.dOpp, f.dHead, f.twiceArea));
     return true;
   }
 
   void run() {
     while (!heap.empty()) {
       const auto [u, c] = popMin();
-      if (u != U[c]) continue;  // superseded by a later, smaller push
+      if (u != value[c].U) continue;  // superseded by a later, smaller push
       // Push only if u < R (§1): a vertex of the ring just outside does not propagate outwards. It
       // still closes the faces it shares with an inner vertex, though: a vertex inside R next to
       // the rim is often reached straight only through an edge (inner, outer) whose outer end got
       // its value after the inner end had popped, and would otherwise keep a fallback value.
       const double partnerLimit = u < radius ? kInf : radius;
       pending.clear();
-      const int* const first = fan.data() + fanStart[c];
-      const int* const last = fan.data() + fanStart[c + 1];
-      for (const int* it = first; it != last; ++it) __builtin_prefetch(&faces[*it / 3]);
-      for (const int* it = first; it != last; ++it)
-        if (!relax(*it, partnerLimit)) pending.push_back(*it);
+      const int first = fanStart[c], last = fanStart[c + 1];
+      for (int f = first; f < last; ++f)
+        if (!relax(c, fan[f], partnerLimit)) pending.push_back(f);
       // Faces met before any of their corners was known, visited clockwise so that the values set
       // later in the lap propagate back around c (the lap's start is arbitrary).
-      for (auto it = pending.rbegin(); it != pending.rend(); ++it) relax(*it, partnerLimit);
+      for (auto it = pending.rbegin(); it != pending.rend(); ++it) relax(c, fan[*it], partnerLimit);
     }
   }
 
   const std::vector<LogMapEntry>& collect(int sourceVertex) {
+    const int source = sourceVertex >= 0 ? inner[sourceVertex] : -1;
     for (int v : touched)
-      if (U[v] <= radius && v != sourceVertex) entries.push_back({v, U[v], theta[v]});
+      if (value[v].U <= radius && v != source) entries.push_back({outer[v], value[v].U, value[v].theta});
     std::sort(entries.begin(), entries.end(), [](const LogMapEntry& a, const LogMapEntry& b) {
       return a.distance < b.distance || (a.distance == b.distance && a.vertex < b.vertex);
     });
@@ -325,9 +294,8 @@ const std::vector<LogMapEntry>& LogMap::computeFromVertex(int v, double radius) 
   const bool boundary = mesh.isBoundaryVertex(v);
   // A boundary vertex's angles run over [0, θ(v)] without a seam, so no wrap there.
   s.begin(radius, !boundary);
-  s.touched.push_back(v);
-  s.U[v] = 0;
-  s.theta[v] = 0;
+  s.touched.push_back(s.inner[v]);
+  s.value[s.inner[v]] = {0.0, 0.0};
   if (mesh.isIsolated(v)) return s.collect(v);  // no face: only itself
   // The one-ring at edge length and the cone-normalised polar angle of its edge (§1 vertex source).
   int last = -1;
@@ -378,7 +346,7 @@ const std::vector<LogMapEntry>& LogMap::compute(const SurfacePoint& source, doub
     // On (or next to) edge k the twin's apex, unfolded across the edge into the face plane, is
     // reached straight through the edge: seed it so that its side of the edge is never guessed.
     const Vec2 tail = x[(k + 1) % 3], dir = (x[k] - tail).normalized();  // twin runs head -> tail
-    const Unfolded e = unfold(s.faces[t / 3], t % 3);
+    const Unfolded e = unfold(faceRecord(geometry_, t / 3), t % 3);
     const Vec2 o = tail + e.ax * dir + e.ay * Vec2(-dir.y(), dir.x());
     s.seed(mesh.tail(Mesh::prev(t)), o.norm(), std::atan2(o.y(), o.x()));
   }
