@@ -24,33 +24,22 @@ namespace geoshift {
 
 using namespace logmap_detail;  // private to this file and logmap_detail.hpp
 
-struct LogMap::State {
-  const Mesh& mesh;
+// What every solver of one mesh reads and none writes: built once, shared by LogMap::fork().
+struct LogMap::Tables {
   // The solver works in its own vertex numbering, sorted along a Morton curve of the positions, so
   // that a front (a small disc of the surface) reads a few runs of neighbouring values and fans
   // instead of lines scattered over a large mesh. Mesh ids go in only at the seeds (inner) and come
   // back only in the output (outer).
   std::vector<int> inner, outer;
-  // U and Θ of a vertex side by side: an update reads both of its edge's ends.
-  struct Value {
-    double U, theta;
-  };
-  std::vector<Value> value;                     // by internal vertex
-  std::vector<int> touched;                     // internal vertices with a finite U, reset by the next call
-  std::vector<Queued> heap;                     // binary min-heap on U with lazy deletion
-  std::vector<int> pending;                     // fan faces around c that had no known corner yet
-  std::vector<LogMapEntry> entries;
   // Each vertex's faces in the counter-clockwise order of its outgoing half-edges from halfedge(v),
   // as the run() loop visits them; by internal vertex.
   std::vector<int> fanStart;
   std::vector<FanFace> fan;
-  double radius = 0;
-  bool periodic = true;  // angles live on a circle (not at a boundary vertex source)
 
-  explicit State(const SurfaceGeometry& g) : mesh(g.mesh()) {
+  explicit Tables(const SurfaceGeometry& g) {
+    const Mesh& mesh = g.mesh();
     const int nv = mesh.vertexCount(), nf = mesh.faceCount();
-    renumber();
-    value.assign(nv, Value{kInf, 0.0});
+    renumber(mesh);
     std::vector<double> twiceArea(nf);
     for (int f = 0; f < nf; ++f) twiceArea[f] = faceRecord(g, f).twiceArea;
     fanStart.resize(nv + 1);
@@ -80,7 +69,7 @@ struct LogMap::State {
 
   // Morton (Z-order) key of each vertex's position quantised to 21 bits an axis over the bounding
   // box; non-finite coordinates go to cell 0 (any order is correct, only locality is at stake).
-  void renumber() {
+  void renumber(const Mesh& mesh) {
     const int nv = mesh.vertexCount();
     Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
     for (int v = 0; v < nv; ++v)
@@ -116,6 +105,31 @@ struct LogMap::State {
       inner[key[c].second] = c;
     }
   }
+
+};
+
+// One solver's mutable buffers: values by internal vertex, the heap, the output.
+struct LogMap::State {
+  const Mesh& mesh;
+  const std::vector<int>& inner;
+  const std::vector<int>& outer;
+  const std::vector<int>& fanStart;
+  const std::vector<FanFace>& fan;
+  // U and Θ of a vertex side by side: an update reads both of its edge's ends.
+  struct Value {
+    double U, theta;
+  };
+  std::vector<Value> value;                     // by internal vertex
+  std::vector<int> touched;                     // internal vertices with a finite U, reset by the next call
+  std::vector<Queued> heap;                     // binary min-heap on U with lazy deletion
+  std::vector<int> pending;                     // fan faces around c that had no known corner yet
+  std::vector<LogMapEntry> entries;
+  double radius = 0;
+  bool periodic = true;  // angles live on a circle (not at a boundary vertex source)
+
+  State(const Mesh& m, const Tables& t)
+      : mesh(m), inner(t.inner), outer(t.outer), fanStart(t.fanStart), fan(t.fan),
+        value(m.vertexCount(), Value{kInf, 0.0}) {}
 
   void begin(double r, bool circle) {
     for (int v : touched) value[v].U = kInf;
@@ -282,7 +296,14 @@ void checkRadius(double radius) {
 }  // namespace
 
 LogMap::LogMap(const SurfaceGeometry& geometry)
-    : geometry_(geometry), state_(std::make_shared<State>(geometry)) {}
+    : geometry_(geometry), tables_(std::make_shared<const Tables>(geometry)),
+      state_(std::make_shared<State>(geometry.mesh(), *tables_)) {}
+
+LogMap::LogMap(const SurfaceGeometry& geometry, std::shared_ptr<const Tables> tables)
+    : geometry_(geometry), tables_(std::move(tables)),
+      state_(std::make_shared<State>(geometry.mesh(), *tables_)) {}
+
+LogMap LogMap::fork() const { return LogMap(geometry_, tables_); }
 
 const std::vector<LogMapEntry>& LogMap::computeFromVertex(int v, double radius) {
   const Mesh& mesh = geometry_.mesh();

@@ -86,6 +86,10 @@ struct LogMapEntry {
 class LogMap {
  public:
   explicit LogMap(const SurfaceGeometry& geometry);
+  // A second solver on the same geometry that shares this one's read-only tables (the per-face
+  // records, a few dozen bytes a half-edge) and has its own buffers (16 bytes a vertex): one per
+  // thread. Solvers must not be shared between threads; forks may run concurrently.
+  LogMap fork() const;
   // Polar coordinates of every vertex within `radius` (absolute units) of the source, in order of
   // increasing distance; the source vertex itself (if any) first with distance 0. Valid until the
   // next call. Throws InputError for a bad source point or radius <= 0.
@@ -93,8 +97,11 @@ class LogMap {
   const std::vector<LogMapEntry>& computeFromVertex(int vertex, double radius);
 
  private:
+  struct Tables;
   struct State;
+  LogMap(const SurfaceGeometry& geometry, std::shared_ptr<const Tables> tables);
   const SurfaceGeometry& geometry_;
+  std::shared_ptr<const Tables> tables_;
   std::shared_ptr<State> state_;
 };
 

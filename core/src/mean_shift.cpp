@@ -1,0 +1,169 @@
+// Riemannian mean shift (ALGORITHMS.md §0, §8): the per-vertex climb and the passes around it.
+#include "geoshift/mean_shift.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "geoshift/error.hpp"
+#include "mean_shift_detail.hpp"
+
+namespace geoshift {
+
+using namespace mean_shift_detail;
+
+void interpolateSignal(const Mesh& mesh, const Attribute& a, const SurfacePoint& point, double* out) {
+  const Face& f = mesh.face(point.face);
+  const int dim = a.dim;
+  for (int d = 0; d < dim; ++d)
+    out[d] = point.bary[0] * a.row(f[0])[d] + point.bary[1] * a.row(f[1])[d] + point.bary[2] * a.row(f[2])[d];
+  if (a.kind != AttributeKind::UnitVector) return;
+  double n2 = 0;
+  for (int d = 0; d < dim; ++d) n2 += out[d] * out[d];
+  if (n2 > 1e-24) {
+    const double s = 1 / std::sqrt(n2);
+    for (int d = 0; d < dim; ++d) out[d] *= s;
+    return;
+  }
+  int k = 0;
+  for (int c = 1; c < 3; ++c)
+    if (point.bary[c] > point.bary[k]) k = c;
+  std::copy(a.row(f[k]), a.row(f[k]) + dim, out);
+}
+
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw InputError("mean shift: " + what);
+}
+
+std::string number(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const MeanShiftOptions& o) {
+  const Mesh& mesh = g.mesh();
+  require(signal.vertexCount() == mesh.vertexCount(),
+          "the signal has " + std::to_string(signal.vertexCount()) + " vertices, the mesh " +
+              std::to_string(mesh.vertexCount()));
+  const auto positive = [](double x) { return std::isfinite(x) && x > 0; };
+  require(positive(o.spatialBandwidth), "spatial bandwidth h_s must be positive (got " + number(o.spatialBandwidth) + ")");
+  require(o.radius == 0 || positive(o.radius), "radius must be positive, or 0 for 3 h_s (got " + number(o.radius) + ")");
+  require(positive(o.epsilon), "epsilon must be positive (got " + number(o.epsilon) + ")");
+  require(o.maxIterations >= 1, "k_max must be at least 1 (got " + std::to_string(o.maxIterations) + ")");
+  require(o.passes >= 1, "passes must be at least 1 (got " + std::to_string(o.passes) + ")");
+  require(std::isfinite(o.recentre) && o.recentre >= 0, "recentre must be a fraction >= 0 (got " + number(o.recentre) + ")");
+
+  std::vector<SignalChannel> wanted = o.channels;
+  if (wanted.empty())
+    for (const Attribute& a : signal.all()) wanted.push_back({a.name, 0, o.rangeKernel});
+  require(!wanted.empty(), "no attribute to filter");
+
+  Setup s{g, mesh, {}};
+  for (const SignalChannel& c : wanted) {
+    const Attribute& a = signal.get(c.attribute);
+    const double hr = c.rangeBandwidth > 0 ? c.rangeBandwidth : o.rangeBandwidth;
+    require(positive(hr), "range bandwidth h_r of '" + c.attribute + "' must be positive (got " + number(hr) + ")");
+    require(c.kernel != RangeKernel::NormalSimilarity || a.kind == AttributeKind::UnitVector,
+            "the normal-similarity kernel needs a unit-vector attribute; '" + c.attribute + "' is not one");
+    for (int v = 0; v < a.vertexCount(); ++v)
+      for (int d = 0; d < a.dim; ++d)
+        require(std::isfinite(a.row(v)[d]),
+                "attribute '" + a.name + "' is not finite at vertex " + std::to_string(v));
+    s.channels.push_back({&a, s.width, a.dim, a.kind == AttributeKind::UnitVector, c.kernel, 0.5 / (hr * hr), hr});
+    s.width += a.dim;
+  }
+  const double ael = g.averageEdgeLength();
+  require(ael > 0, "the mesh has no edge of positive length");
+  s.hs = o.spatialBandwidth * ael;
+  s.r = (o.radius > 0 ? o.radius : 3 * o.spatialBandwidth) * ael;
+  s.eps = o.epsilon * ael;
+  s.invTwoHs2 = 0.5 / (s.hs * s.hs);
+  s.r2 = s.r * s.r;
+  s.exact = o.exactCharts;
+  s.drift = s.exact ? 0 : o.recentre * s.r;
+  s.chartRadius = s.r + s.drift;
+  s.kmax = o.maxIterations;
+  s.joint = o.rangeUpdate == RangeUpdate::Joint;
+  // Range changes count as converged below (ε/h_s)² in units of h_r: the same relative tolerance.
+  s.rangeTolerance2 = (s.eps / s.hs) * (s.eps / s.hs);
+  return s;
+}
+
+std::vector<double> pack(const Setup& s, int n) {
+  std::vector<double> packed(static_cast<size_t>(n) * s.width);
+  for (const Channel& c : s.channels)
+    for (int v = 0; v < n; ++v) std::copy(c.source->row(v), c.source->row(v) + c.dim, &packed[v * s.width + c.offset]);
+  return packed;
+}
+
+}  // namespace
+
+MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& signal, const MeanShiftOptions& options,
+                          const Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const Setup s = makeSetup(support, signal, options);
+  const Mesh& mesh = support.mesh();
+  const int n = mesh.vertexCount();
+
+  MeanShiftResult result;
+  result.threads = resolveThreads(options.parallel.threads);
+  result.modes.assign(n, SurfacePoint{});
+  result.iterations.assign(n, 0);
+  result.converged.assign(n, 1);
+
+  LogMap first(support);
+  std::vector<Climber> climbers;
+  climbers.reserve(result.threads);
+  climbers.emplace_back(s, std::move(first));
+  for (int w = 1; w < result.threads; ++w) climbers.emplace_back(s, climbers.front().logMap.fork());
+
+  std::vector<double> current = pack(s, n), next(current.size());
+  std::vector<int> passIterations(n);
+  long long total = 0;
+  for (int pass = 0; pass < options.passes; ++pass) {
+    const std::string stage =
+        options.passes == 1 ? "mean shift" : "blurring pass " + std::to_string(pass + 1) + "/" + std::to_string(options.passes);
+    parallelFor(n, options.parallel, progress, stage, double(pass) / options.passes, double(pass + 1) / options.passes,
+                [&](int v, int worker) {
+                  const Climb c = climbers[worker].run(current, v, &next[static_cast<size_t>(v) * s.width]);
+                  result.modes[v] = c.mode;
+                  passIterations[v] = c.iterations;
+                  if (!c.converged) result.converged[v] = 0;
+                });
+    for (int v = 0; v < n; ++v) {
+      result.iterations[v] += passIterations[v];
+      result.maxIterations = std::max(result.maxIterations, passIterations[v]);
+      total += passIterations[v];
+    }
+    current.swap(next);
+  }
+
+  result.signal = AttributeSet(n);
+  for (const Channel& c : s.channels) {
+    std::vector<double> values(static_cast<size_t>(n) * c.dim);
+    for (int v = 0; v < n; ++v)
+      std::copy(&current[v * s.width + c.offset], &current[v * s.width + c.offset] + c.dim, &values[v * c.dim]);
+    result.signal.set(c.source->name, c.dim, c.source->kind, std::move(values));
+  }
+  if (options.segments) {
+    progress.step(1.0, "segments");
+    segmentModes(s, current, result);
+  }
+  result.meanIterations = n > 0 ? double(total) / (double(n) * options.passes) : 0;
+  result.convergedFraction =
+      n > 0 ? double(std::count(result.converged.begin(), result.converged.end(), 1)) / n : 1.0;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+MeanShiftResult meanShift(const Mesh& mesh, const AttributeSet& signal, const MeanShiftOptions& options,
+                          const Progress& progress) {
+  const SurfaceGeometry geometry(mesh);
+  return meanShift(geometry, signal, options, progress);
+}
+
+}  // namespace geoshift

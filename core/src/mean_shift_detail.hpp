@@ -1,0 +1,66 @@
+#pragma once
+// Private to the mean shift sources: the validated setup, one vertex's climb, segmentation.
+#include <vector>
+
+#include "geoshift/geodesic.hpp"
+#include "geoshift/mean_shift.hpp"
+
+namespace geoshift::mean_shift_detail {
+
+// One attribute's slice of the packed signal (rows of `width` doubles, channels side by side).
+struct Channel {
+  const Attribute* source;
+  int offset, dim;
+  bool unit;
+  RangeKernel kernel;
+  double invTwoHr2;  // 1 / 2h_r²
+  double hr;
+};
+
+struct Setup {
+  const SurfaceGeometry& geometry;
+  const Mesh& mesh;
+  std::vector<Channel> channels;
+  int width = 0;
+  // Absolute units.
+  double hs = 0, r = 0, eps = 0, invTwoHs2 = 0, r2 = 0, drift = 0, chartRadius = 0;
+  double rangeTolerance2 = 0;
+  int kmax = 0;
+  bool joint = false, exact = false;
+};
+
+struct Climb {
+  SurfacePoint mode;
+  int iterations = 0;
+  bool converged = true;
+};
+
+// A worker's solver and scratch; climbs one vertex at a time. The result of run() depends only on
+// the vertex and the signal, never on what the worker climbed before.
+class Climber {
+ public:
+  Climber(const Setup& setup, LogMap logMap);
+  // Mean shift from vertex v over the packed signal; writes the range value at the mode to out.
+  Climb run(const std::vector<double>& signal, int v, double* out);
+
+  LogMap logMap;
+
+ private:
+  void chartAt(const SurfacePoint& base);
+  // The range value of the signal at p (barycentric; unit vectors re-normalised).
+  void sample(const std::vector<double>& signal, const SurfacePoint& p, double* y) const;
+  // −log of the range kernel product between y and the signal row f.
+  double rangeExponent(const double* y, const double* f) const;
+  double rangeChange2(const double* a, const double* b) const;
+
+  const Setup& s_;
+  std::vector<int> vertex_;          // the chart: vertices within chartRadius of base_
+  std::vector<double> x_, y_;        // and their log-map coordinates in base_'s frame
+  SurfacePoint base_;
+  std::vector<double> value_, next_, acc_;
+};
+
+// Fills result.segment / segmentCount from result.modes and the filtered packed signal.
+void segmentModes(const Setup& setup, const std::vector<double>& signal, MeanShiftResult& result);
+
+}  // namespace geoshift::mean_shift_detail
