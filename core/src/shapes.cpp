@@ -1,5 +1,6 @@
 #include "geoshift/shapes.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -166,6 +167,47 @@ TriangleSoup torus(int majorSegments, int minorSegments, double R, double r) {
       addQuad(s, i * m + j, i1 * m + j, i1 * m + j1, i * m + j1);
     }
   }
+  return s;
+}
+
+TriangleSoup box(int nx, int ny, int nz, const Vec3& size) {
+  require(nx >= 1 && ny >= 1 && nz >= 1, "box needs at least one quad per side each way (got " +
+                                             std::to_string(nx) + ", " + std::to_string(ny) + ", " +
+                                             std::to_string(nz) + ")");
+  require(size.allFinite() && size.minCoeff() > 0, "box sides must be positive");
+  const std::array<int, 3> n = {nx, ny, nz};
+  TriangleSoup s;
+  // Surface lattice points keyed by their integer coordinates, so sides share their edge vertices.
+  std::unordered_map<std::uint64_t, int> index;
+  auto vertex = [&](std::array<int, 3> c) {
+    const std::uint64_t key = (static_cast<std::uint64_t>(c[0]) << 42) |
+                              (static_cast<std::uint64_t>(c[1]) << 21) | static_cast<std::uint64_t>(c[2]);
+    auto [it, inserted] = index.try_emplace(key, static_cast<int>(s.positions.size()));
+    if (inserted) {
+      Vec3 p;
+      for (int k = 0; k < 3; ++k) p[k] = size[k] * (static_cast<double>(c[k]) / n[k] - 0.5);
+      s.positions.push_back(p);
+    }
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    for (int side : {0, n[axis]}) {
+      for (int i = 0; i < n[u]; ++i) {
+        for (int j = 0; j < n[w]; ++j) {
+          std::array<int, 3> c{};
+          c[axis] = side;
+          auto at = [&](int di, int dj) {
+            c[u] = i + di;
+            c[w] = j + dj;
+            return vertex(c);
+          };
+          addQuad(s, at(0, 0), at(1, 0), at(1, 1), at(0, 1));
+        }
+      }
+    }
+  }
+  orientAwayFromOrigin(s);
   return s;
 }
 

@@ -15,6 +15,13 @@ TriangleSoup icosphere(int level, double radius = 1.0);
 TriangleSoup cylinder(int sides, int rings, double radius = 1.0, double height = 1.0);
 // Torus around z: major radius R, minor radius r.
 TriangleSoup torus(int majorSegments, int minorSegments, double R = 1.0, double r = 0.35);
+// Closed box [-size/2, size/2] with nx x ny x nz quads (each split into two triangles) along its
+// sides: flat sides meeting at sharp 90° edges, a CAD-like block for feature-preserving filters.
+TriangleSoup box(int nx, int ny, int nz, const Vec3& size = Vec3(1, 1, 1));
+// Closed genus-2 surface: two tori (major radius 1, minor radius 0.4, centres 2.4 apart on x)
+// blended smoothly where they meet. `resolution` grid cells span its length (at least 16; 64 gives
+// about 6k vertices). Marched tetrahedra, then relaxed along the surface for even triangles.
+TriangleSoup doubleTorus(int resolution = 64);
 // The same soup with every face's corners given their own vertex (like a glTF with split seams).
 TriangleSoup unwelded(const TriangleSoup& soup);
 

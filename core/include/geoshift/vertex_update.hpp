@@ -1,0 +1,60 @@
+#pragma once
+// Vertex positions from target face normals (Lee–Wang 2005; Sun et al. 2007; ALGORITHMS.md §3):
+// the second half of every normal-filtering denoiser.
+#include <vector>
+
+#include "geoshift/mesh.hpp"
+#include "geoshift/progress.hpp"
+
+namespace geoshift {
+
+// What the flip guard compares each face's candidate normal with (besides its current normal).
+enum class FlipGuard {
+  Input,           // its input normal: no face ends up flipped relative to the input
+  InputOrTarget,   // its input or its target normal: folds in noisy input may unfold
+};
+
+struct VertexUpdateOptions {
+  int iterations = 20;
+  // Weigh each face's pull by its current area (normalised by the sum of the areas) instead of
+  // averaging the faces around a vertex uniformly.
+  bool areaWeighted = false;
+  // Boundary vertices stay where they are (otherwise they move like the others).
+  bool fixedBoundary = false;
+  FlipGuard flipGuard = FlipGuard::Input;
+};
+
+struct VertexUpdateResult {
+  std::vector<Vec3> positions;  // one per mesh vertex
+  int iterations = 0;           // iterations run
+  int limitedSteps = 0;         // vertex steps the flip guard shortened, summed over iterations
+  int frozenSteps = 0;          // of those, steps it cancelled entirely
+  double maxDisplacement = 0;   // largest distance of a vertex from its input position
+};
+
+// Jacobi iterations of x_i += (1/|F_i|) Σ_{f∋i} n'_f (n'_f · (c_f − x_i)), with c_f the current
+// centroid of face f and n'_f its (fixed) target normal.
+//
+// Flip guard: a candidate step is accepted only if every face keeps a positive projection of its
+// normal on its input normal (a face never turns by 90° or more relative to the input) and on its
+// current normal (no face turns by 90° or more within one iteration). The vertices of a face that
+// breaks either rule have their step halved, and the check repeats on the faces around them; a
+// vertex whose step was halved 8 times does not move this iteration. The current positions pass
+// both checks, so the loop ends and the result never has a face flipped relative to the input.
+// Faces of zero area in the input are exempt from the input check.
+//
+// Preconditions: targetNormals has one entry per face. Entries are normalised here; a zero vector
+// means the face pulls on nothing. Throws InputError when the count is wrong, an entry is not
+// finite (naming the face) or iterations < 0. Throws Cancelled through `progress`.
+VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& targetNormals,
+                                  const VertexUpdateOptions& options = {},
+                                  const Progress& progress = {});
+
+// Face normals from filtered vertex normals: the normalised mean of each face's three vertex
+// normals (the rule of the paper's §4.1). Where the three cancel out, the face's own geometric
+// normal is used. Throws InputError when vertexNormals has not one entry per vertex or an entry
+// is not finite (naming the vertex).
+std::vector<Vec3> faceNormalsFromVertexNormals(const Mesh& mesh,
+                                               const std::vector<Vec3>& vertexNormals);
+
+}  // namespace geoshift

@@ -1,0 +1,188 @@
+#include "geoshift/vertex_update.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "geoshift/error.hpp"
+#include "geoshift/geometry.hpp"
+
+namespace geoshift {
+namespace {
+
+constexpr int kMaxHalvings = 8;
+
+std::string vecText(const Vec3& v) {
+  return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
+}
+
+// Faces around each vertex, flat: vertex v's faces are [start[v], start[v+1]).
+struct VertexFaces {
+  std::vector<int> start, face;
+};
+
+VertexFaces vertexFaces(const Mesh& mesh) {
+  VertexFaces vf;
+  vf.start.assign(mesh.vertexCount() + 1, 0);
+  for (const Face& t : mesh.faces())
+    for (int v : t) ++vf.start[v + 1];
+  for (int v = 0; v < mesh.vertexCount(); ++v) vf.start[v + 1] += vf.start[v];
+  vf.face.resize(vf.start.back());
+  std::vector<int> fill(vf.start.begin(), vf.start.end() - 1);
+  for (int f = 0; f < mesh.faceCount(); ++f)
+    for (int v : mesh.face(f)) vf.face[fill[v]++] = f;
+  return vf;
+}
+
+Vec3 crossOf(const std::vector<Vec3>& x, const Face& t) {
+  return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
+}
+
+}  // namespace
+
+VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& targetNormals,
+                                  const VertexUpdateOptions& options, const Progress& progress) {
+  const int nv = mesh.vertexCount(), nf = mesh.faceCount();
+  if (static_cast<int>(targetNormals.size()) != nf) {
+    throw InputError("vertex update: " + std::to_string(targetNormals.size()) +
+                     " target normals for " + std::to_string(nf) + " faces");
+  }
+  if (options.iterations < 0) {
+    throw InputError("vertex update: iterations must be >= 0 (got " +
+                     std::to_string(options.iterations) + ")");
+  }
+  std::vector<Vec3> target(nf);
+  for (int f = 0; f < nf; ++f) {
+    const Vec3& n = targetNormals[f];
+    if (!n.allFinite()) throw InputError("vertex update: target normal of face " + std::to_string(f) + " is not finite " + vecText(n));
+    const double len = n.norm();
+    target[f] = len > 0 ? Vec3(n / len) : Vec3::Zero();
+  }
+
+  const VertexFaces vf = vertexFaces(mesh);
+  std::vector<char> pinned(nv, 0);
+  for (int v = 0; v < nv; ++v)
+    pinned[v] = mesh.isIsolated(v) || (options.fixedBoundary && mesh.isBoundaryVertex(v));
+
+  // The reference each face must stay on the positive side of (zero for degenerate input faces).
+  std::vector<Vec3> inputNormal = faceNormals(mesh);
+
+  VertexUpdateResult result;
+  std::vector<Vec3> x = mesh.positions(), candidate = x, step(nv), accum(nv);
+  std::vector<double> weight(nv);
+  std::vector<Vec3> currentCross(nf);
+  std::vector<double> scale(nv);
+  std::vector<char> halvedThisRound(nv);
+  std::vector<int> badFaces, touched;
+  std::vector<int> badStamp(nf, -1);  // round in which a face was last queued, to queue it once
+  int round = 0;
+
+  auto faceOk = [&](int f) {
+    const Vec3 c = crossOf(candidate, mesh.face(f));
+    const bool keepsInputSide = inputNormal[f].squaredNorm() == 0.0 || c.dot(inputNormal[f]) > 0.0 ||
+                                (options.flipGuard == FlipGuard::InputOrTarget && c.dot(target[f]) > 0.0);
+    const bool keepsCurrentSide = currentCross[f].squaredNorm() == 0.0 || c.dot(currentCross[f]) > 0.0;
+    return keepsInputSide && keepsCurrentSide;
+  };
+
+  for (int it = 0; it < options.iterations; ++it) {
+    progress.step(static_cast<double>(it) / options.iterations, "vertex update");
+    std::fill(accum.begin(), accum.end(), Vec3::Zero());
+    std::fill(weight.begin(), weight.end(), 0.0);
+    for (int f = 0; f < nf; ++f) {
+      const Face& t = mesh.face(f);
+      currentCross[f] = crossOf(x, t);
+      const Vec3& n = target[f];
+      if (n.squaredNorm() == 0) continue;
+      const double w = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
+      const Vec3 c = (x[t[0]] + x[t[1]] + x[t[2]]) / 3.0;
+      for (int v : t) {
+        accum[v] += (w * n.dot(c - x[v])) * n;
+        weight[v] += w;
+      }
+    }
+    for (int v = 0; v < nv; ++v) {
+      step[v] = !pinned[v] && weight[v] > 0 ? Vec3(accum[v] / weight[v]) : Vec3::Zero();
+      scale[v] = 1.0;
+      candidate[v] = x[v] + step[v];
+    }
+
+    badFaces.clear();
+    for (int f = 0; f < nf; ++f)
+      if (!faceOk(f)) badFaces.push_back(f);
+    while (!badFaces.empty()) {
+      // Shorten the steps of every vertex of a bad face once per round, then re-check only the
+      // faces those vertices touch.
+      touched.clear();
+      for (int f : badFaces) {
+        for (int v : mesh.face(f)) {
+          if (halvedThisRound[v] || scale[v] == 0.0) continue;
+          halvedThisRound[v] = 1;
+          touched.push_back(v);
+          if (scale[v] == 1.0) ++result.limitedSteps;
+          scale[v] *= 0.5;
+          if (scale[v] < std::ldexp(1.0, -kMaxHalvings)) {
+            scale[v] = 0.0;
+            ++result.frozenSteps;
+          }
+          candidate[v] = x[v] + scale[v] * step[v];
+        }
+      }
+      badFaces.clear();
+      ++round;
+      for (int v : touched) {
+        halvedThisRound[v] = 0;
+        for (int k = vf.start[v]; k < vf.start[v + 1]; ++k) {
+          const int f = vf.face[k];
+          if (badStamp[f] != round && !faceOk(f)) {
+            badStamp[f] = round;
+            badFaces.push_back(f);
+          }
+        }
+      }
+      // A bad face whose vertices are all frozen sits at its current, valid position; it cannot
+      // stay bad, so the loop ends after at most kMaxHalvings + 1 rounds per vertex.
+    }
+    x.swap(candidate);
+    candidate = x;
+    result.iterations = it + 1;
+  }
+  progress.step(1.0, "vertex update");
+  for (int v = 0; v < nv; ++v)
+    result.maxDisplacement = std::max(result.maxDisplacement, (x[v] - mesh.position(v)).norm());
+  result.positions = std::move(x);
+  return result;
+}
+
+std::vector<Vec3> faceNormalsFromVertexNormals(const Mesh& mesh,
+                                               const std::vector<Vec3>& vertexNormals) {
+  if (static_cast<int>(vertexNormals.size()) != mesh.vertexCount()) {
+    throw InputError("face normals from vertex normals: " + std::to_string(vertexNormals.size()) +
+                     " vertex normals for " + std::to_string(mesh.vertexCount()) + " vertices");
+  }
+  for (int v = 0; v < mesh.vertexCount(); ++v) {
+    if (!vertexNormals[v].allFinite())
+      throw InputError("face normals from vertex normals: normal of vertex " + std::to_string(v) + " is not finite " + vecText(vertexNormals[v]));
+  }
+  std::vector<Vec3> out(mesh.faceCount());
+  for (int f = 0; f < mesh.faceCount(); ++f) {
+    const Face& t = mesh.face(f);
+    // Unit inputs are assumed by the paper; normalising each first keeps a long one from dominating.
+    Vec3 sum = Vec3::Zero();
+    for (int v : t) {
+      const double len = vertexNormals[v].norm();
+      if (len > 0) sum += vertexNormals[v] / len;
+    }
+    const double len = sum.norm();
+    if (len > 1e-12) {
+      out[f] = sum / len;
+    } else {
+      const Vec3 c = faceCross(mesh, f);
+      const double cl = c.norm();
+      out[f] = cl > 0 ? Vec3(c / cl) : Vec3::Zero();
+    }
+  }
+  return out;
+}
+
+}  // namespace geoshift
