@@ -1,0 +1,394 @@
+// Lifting analysis (ALGORITHMS.md §5): per level an independent set of odd vertices, chosen greedily
+// in ascending cost, each predicted from its even one-ring and collapsed into one even neighbour;
+// then the integral update A'_e = A_e + Σ_o p_oe A_o and the signal update f_e += Σ_o u_eo d_o with
+// LOCAAT's minimum-norm u_eo = A_o A'_e / Σ_e' A'_e'^2, which keeps Σ_v A_v f_v exactly invariant.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "geoshift/error.hpp"
+#include "geoshift/geometry.hpp"
+#include "geoshift/wavelet.hpp"
+#include "wavelet_detail.hpp"
+
+namespace geoshift {
+
+using wavelet_detail::CollapseMesh;
+using wavelet_detail::PositionRows;
+using wavelet_detail::Ring;
+
+int Multiresolution::channelCount() const {
+  int c = 0;
+  for (const Attribute& a : layout) c += a.dim;
+  return c;
+}
+
+std::vector<int> Multiresolution::vertexCounts() const {
+  std::vector<int> counts;
+  for (const WaveletLevel& l : levels) counts.push_back(l.vertexCount);
+  counts.push_back(coarse.vertexCount());
+  return counts;
+}
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+// Prediction weights over the ring (interior) or the two boundary neighbours (boundary), summing to 1.
+void predictionWeights(int o, const Ring& r, const PositionRows& x, WaveletWeights kind,
+                       std::vector<int>& nbr, std::vector<double>& w) {
+  nbr.clear();
+  w.clear();
+  const Vec3 xo = x(o);
+  if (r.boundary) {
+    const int a = r.vertex.back(), b = r.vertex.front();
+    const double da = (x(a) - xo).norm(), db = (x(b) - xo).norm();
+    nbr = {a, b};
+    // Linear interpolation along the polyline (what inverse distance and mean value give in 1D).
+    if (kind == WaveletWeights::Uniform || !(da + db > 0)) w = {0.5, 0.5};
+    else w = {db / (da + db), da / (da + db)};
+    return;
+  }
+  const int n = static_cast<int>(r.vertex.size());
+  nbr = r.vertex;
+  w.assign(n, 1.0);
+  if (kind == WaveletWeights::InverseDistance) {
+    for (int i = 0; i < n; ++i) w[i] = 1.0 / (x(nbr[i]) - xo).norm();
+  } else if (kind == WaveletWeights::MeanValue) {
+    // w_i = (tan(α_{i-1}/2) + tan(α_i/2)) / r_i, α_i the angle at o between n_i and n_{i+1},
+    // tan(α/2) = |a×b| / (|a||b| + a·b).
+    thread_local std::vector<double> tanHalf;
+    tanHalf.resize(n);
+    for (int i = 0; i < n; ++i) {
+      const Vec3 a = x(nbr[i]) - xo, b = x(nbr[(i + 1) % n]) - xo;
+      tanHalf[i] = a.cross(b).norm() / (a.norm() * b.norm() + a.dot(b));
+    }
+    for (int i = 0; i < n; ++i) w[i] = (tanHalf[(i + n - 1) % n] + tanHalf[i]) / (x(nbr[i]) - xo).norm();
+  }
+  double sum = 0;
+  for (double v : w) sum += v;
+  if (!std::isfinite(sum) || !(sum > 0)) {
+    w.assign(n, 1.0);
+    sum = n;
+  }
+  for (double& v : w) v /= sum;
+}
+
+double turnCosine(int v, const Ring& r, const PositionRows& x) {
+  const Vec3 in = x(v) - x(r.vertex.back()), out = x(r.vertex.front()) - x(v);
+  const double d = in.norm() * out.norm();
+  return d > 0 ? in.dot(out) / d : -1.0;
+}
+
+struct Analyzer {
+  const Mesh& mesh;
+  const WaveletOptions& opt;
+  const Progress& progress;
+  int C = 3;
+  std::vector<double> F;  // n × C: x, y, z, attribute channels
+  std::vector<double> A;  // integrals
+  CollapseMesh cm;
+  std::vector<int> live;  // vertex ids, increasing
+  std::vector<char> status, banned;  // status: 0 free, 1 even (locked), 2 odd
+  Ring ring;
+  std::vector<int> nbr;
+  std::vector<double> w;
+
+  Analyzer(const Mesh& m, const WaveletOptions& o, const Progress& p) : mesh(m), opt(o), progress(p), cm(m) {}
+
+  PositionRows positions() const { return {F.data(), C}; }
+  double* row(int v) { return F.data() + static_cast<size_t>(v) * C; }
+
+  // One level; false when it removes nothing.
+  bool level(int index, WaveletLevel& L, std::vector<int>* parentFace);
+  void select(const std::vector<int>& order, WaveletLevel& L, std::vector<char>& faceMark, std::vector<Vec3>& ref);
+};
+
+void Analyzer::select(const std::vector<int>& order, WaveletLevel& L, std::vector<char>& faceMark,
+                      std::vector<Vec3>& ref) {
+  const PositionRows x = positions();
+  const double cosMax = std::cos(opt.maxNormalChange * kDegree);
+  std::vector<std::pair<double, int>> targets;
+  L.odd.clear(), L.target.clear(), L.neighbor.clear(), L.predict.clear();
+  L.offset.assign(1, 0);
+  for (size_t i = 0; i < order.size(); ++i) {
+    if ((i & 0xffff) == 0) progress.step(static_cast<double>(i) / order.size(), "wavelet analysis");
+    const int o = order[i];
+    if (status[o] != 0 || banned[o]) continue;
+    cm.ring(o, ring);
+    targets.clear();
+    const int n = static_cast<int>(ring.vertex.size());
+    for (int j = 0; j < n; ++j) {
+      if (ring.boundary && j != 0 && j != n - 1) continue;
+      targets.emplace_back((x(ring.vertex[j]) - x(o)).squaredNorm(), j);
+    }
+    std::sort(targets.begin(), targets.end());
+    int chosen = -1;
+    for (const auto& [len, j] : targets)
+      if (cm.canCollapse(o, ring, j, x, cosMax)) {
+        chosen = j;
+        break;
+      }
+    if (chosen < 0) continue;
+    predictionWeights(o, ring, x, opt.weights, nbr, w);
+    L.odd.push_back(o);
+    L.target.push_back(ring.vertex[chosen]);
+    L.neighbor.insert(L.neighbor.end(), nbr.begin(), nbr.end());
+    L.predict.insert(L.predict.end(), w.begin(), w.end());
+    L.offset.push_back(static_cast<int>(L.neighbor.size()));
+    status[o] = 2;
+    for (int v : ring.vertex) status[v] = 1;
+    cm.collapse(o, ring, chosen, x, [&](int f, const Vec3& oldCross) {
+      faceMark[f] = 1;
+      ref[f] = oldCross;
+    });
+  }
+}
+
+bool Analyzer::level(int index, WaveletLevel& L, std::vector<int>* parentFace) {
+  const PositionRows x = positions();
+  L.vertexCount = static_cast<int>(live.size());
+  // Candidates in ascending cost; boundary vertices only where the polyline is nearly straight.
+  const double cosBoundary = opt.boundaryAngle < 0 ? 2.0 : std::cos(opt.boundaryAngle * kDegree);
+  std::vector<std::pair<double, int>> cost;
+  cost.reserve(live.size());
+  for (int v : live) {
+    if (cm.isolated(v)) continue;
+    cm.ring(v, ring);
+    if (ring.boundary && turnCosine(v, ring, x) < cosBoundary) continue;
+    double c = A[v];
+    if (opt.cost == WaveletCost::Residual) {
+      predictionWeights(v, ring, x, opt.weights, nbr, w);
+      Vec3 p = Vec3::Zero();
+      for (size_t i = 0; i < nbr.size(); ++i) p += w[i] * x(nbr[i]);
+      c = (x(v) - p).squaredNorm();
+    }
+    cost.emplace_back(c, v);
+  }
+  std::sort(cost.begin(), cost.end());
+  std::vector<int> order(cost.size());
+  for (size_t i = 0; i < cost.size(); ++i) order[i] = cost[i].second;
+  cost = {};
+
+  cm.beginLevel();
+  for (int v : live) banned[v] = 0;
+  std::vector<char> faceMark;
+  std::vector<Vec3> ref;
+  std::vector<int> touched;
+  std::vector<double> savedRows, savedA;
+  for (int attempt = 0;; ++attempt) {
+    for (int v : live) status[v] = 0;
+    faceMark.assign(cm.faceCount(), 0);
+    ref.resize(cm.faceCount());
+    select(order, L, faceMark, ref);
+    const int m = static_cast<int>(L.odd.size());
+    if (m == 0) return false;
+
+    // Every even neighbour moves in the update: remember its row and integral, and the normals of
+    // its faces before the move.
+    touched.clear();
+    for (int e : L.neighbor)
+      if (status[e] == 1) {
+        status[e] = 3;
+        touched.push_back(e);
+      }
+    savedRows.resize(touched.size() * C);
+    savedA.resize(touched.size());
+    for (size_t i = 0; i < touched.size(); ++i) {
+      std::copy_n(row(touched[i]), C, savedRows.begin() + i * C);
+      savedA[i] = A[touched[i]];
+      cm.ring(touched[i], ring);
+      for (int h : ring.outgoing)
+        if (!faceMark[h / 3]) {
+          const Face& f = cm.faces()[h / 3];
+          faceMark[h / 3] = 1;
+          ref[h / 3] = (x(f[1]) - x(f[0])).cross(x(f[2]) - x(f[0]));
+        }
+    }
+
+    // Predict from the pre-update evens (batch lifting), then the integral update.
+    L.detail.resize(static_cast<size_t>(m) * C);
+    for (int i = 0; i < m; ++i) {
+      double* d = L.detail.data() + static_cast<size_t>(i) * C;
+      std::copy_n(row(L.odd[i]), C, d);
+      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) {
+        const double* fe = row(L.neighbor[q]);
+        const double p = L.predict[q];
+        for (int c = 0; c < C; ++c) d[c] -= p * fe[c];
+      }
+    }
+    for (int i = 0; i < m; ++i)
+      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) A[L.neighbor[q]] += L.predict[q] * A[L.odd[i]];
+    L.update.resize(L.neighbor.size());
+    for (int i = 0; i < m; ++i) {
+      double s = 0;
+      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) s += A[L.neighbor[q]] * A[L.neighbor[q]];
+      const double Ao = A[L.odd[i]];
+      const double* d = L.detail.data() + static_cast<size_t>(i) * C;
+      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) {
+        const double u = s > 0 ? Ao * A[L.neighbor[q]] / s : 0.0;
+        L.update[q] = u;
+        double* fe = row(L.neighbor[q]);
+        for (int c = 0; c < C; ++c) fe[c] += u * d[c];
+      }
+    }
+
+    // The update moves even vertices: no face may flip or degenerate because of it.
+    std::vector<int> bad;
+    for (int f = 0; f < cm.faceCount(); ++f) {
+      if (!faceMark[f] || !cm.faceAlive(f)) continue;
+      const Face& t = cm.faces()[f];
+      const Vec3 a = x(t[0]), b = x(t[1]), c = x(t[2]);
+      const Vec3 n = (b - a).cross(c - a);
+      const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+      if (!(n.norm() > 1e-9 * longest) || !(n.dot(ref[f]) > 0)) bad.push_back(f);
+    }
+    for (int e : touched) status[e] = 1;
+    if (bad.empty()) break;
+
+    // Undo the level and keep the odd vertices next to the offending faces even this time.
+    for (size_t i = 0; i < touched.size(); ++i) {
+      std::copy_n(savedRows.begin() + i * C, C, row(touched[i]));
+      A[touched[i]] = savedA[i];
+    }
+    std::vector<char> near(mesh.vertexCount(), 0);
+    for (int f : bad)
+      for (int v : cm.faces()[f]) near[v] = 1;
+    for (int i = 0; i < m; ++i) {
+      bool hit = near[L.target[i]];
+      for (int q = L.offset[i]; q < L.offset[i + 1] && !hit; ++q) hit = near[L.neighbor[q]];
+      if (hit) banned[L.odd[i]] = 1;
+    }
+    cm.rollback();
+    if (attempt > 64) throw std::logic_error("wavelet: level " + std::to_string(index) + " keeps flipping faces");
+  }
+
+  std::vector<int> parent = cm.compact(live);
+  if (parentFace) *parentFace = std::move(parent);
+  std::erase_if(live, [&](int v) { return status[v] == 2; });
+  return true;
+}
+
+void requireFiniteSignals(const AttributeSet& signals, int n) {
+  for (const Attribute& a : signals.all()) {
+    if (a.vertexCount() != n || a.values.size() != static_cast<size_t>(n) * a.dim)
+      throw InputError("wavelet analysis: attribute '" + a.name + "' has " + std::to_string(a.vertexCount()) +
+                       " rows for a mesh of " + std::to_string(n) + " vertices");
+    for (size_t i = 0; i < a.values.size(); ++i)
+      if (!std::isfinite(a.values[i]))
+        throw InputError("wavelet analysis: attribute '" + a.name + "' is not finite at vertex " +
+                         std::to_string(i / a.dim));
+  }
+}
+
+// A mesh from the live vertices (renumbered in increasing id order) and the current faces.
+WaveletLevelMesh snapshotMesh(const std::vector<int>& live, const std::vector<Face>& faces,
+                              const std::vector<double>& F, int C, int inputVertices) {
+  WaveletLevelMesh s;
+  std::vector<int> index(inputVertices, -1);
+  std::vector<Vec3> positions(live.size());
+  for (size_t i = 0; i < live.size(); ++i) {
+    index[live[i]] = static_cast<int>(i);
+    const double* r = F.data() + static_cast<size_t>(live[i]) * C;
+    positions[i] = Vec3(r[0], r[1], r[2]);
+  }
+  std::vector<Face> local(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int c = 0; c < 3; ++c) local[f][c] = index[faces[f][c]];
+  BuildReport report;
+  s.mesh = Mesh(std::move(positions), local, &report);
+  if (!report.clean() || report.splitVertexCopies != 0 || s.mesh.faceCount() != static_cast<int>(faces.size()))
+    throw std::logic_error("wavelet: a coarse mesh is not manifold: " +
+                           (report.messages.empty() ? std::string("faces dropped") : report.messages.front()));
+  s.inputVertex = live;
+  return s;
+}
+
+}  // namespace
+
+Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const WaveletOptions& options,
+                        const Progress& progress) {
+  if (options.levels < 0)
+    throw InputError("wavelet analysis: levels must be >= 0 (got " + std::to_string(options.levels) + ")");
+  if (!(options.maxNormalChange > 0 && options.maxNormalChange < 90))
+    throw InputError("wavelet analysis: maxNormalChange must be in (0, 90) degrees");
+  if (!std::isfinite(options.boundaryAngle))
+    throw InputError("wavelet analysis: boundaryAngle must be finite");
+  const int n = mesh.vertexCount();
+  if (signals.size() > 0 && signals.vertexCount() != n)
+    throw InputError("wavelet analysis: the attributes have " + std::to_string(signals.vertexCount()) +
+                     " vertices, the mesh " + std::to_string(n));
+  requireFiniteSignals(signals, n);
+
+  Multiresolution mr;
+  mr.fine = mesh;
+  mr.requestedLevels = options.levels;
+  mr.layout.push_back({"position", 3, AttributeKind::Euclidean, {}});
+  for (const Attribute& a : signals.all()) mr.layout.push_back({a.name, a.dim, a.kind, {}});
+
+  Analyzer an(mesh, options, progress);
+  const int C = an.C = mr.channelCount();
+  an.F.resize(static_cast<size_t>(n) * C);
+  for (int v = 0; v < n; ++v) {
+    double* r = an.row(v);
+    r[0] = mesh.position(v).x(), r[1] = mesh.position(v).y(), r[2] = mesh.position(v).z();
+    int c = 3;
+    for (const Attribute& a : signals.all()) {
+      std::copy_n(a.row(v), a.dim, r + c);
+      c += a.dim;
+    }
+  }
+  an.A = mixedVoronoiAreas(mesh);
+  an.live.resize(n);
+  for (int v = 0; v < n; ++v) an.live[v] = v;
+  an.status.assign(n, 0);
+  an.banned.assign(n, 0);
+  if (options.keepLevelMeshes) mr.levelMeshes.push_back({mesh, an.live, {}});
+
+  for (int l = 0; l < options.levels; ++l) {
+    progress.step(static_cast<double>(l) / options.levels, "wavelet analysis");
+    WaveletLevel L;
+    std::vector<int> parent;
+    if (!an.level(l, L, options.keepLevelMeshes ? &parent : nullptr)) break;
+    mr.levels.push_back(std::move(L));
+    if (options.keepLevelMeshes) {
+      mr.levelMeshes.push_back(snapshotMesh(an.live, an.cm.faces(), an.F, C, n));
+      mr.levelMeshes.back().parentFace = std::move(parent);
+    }
+  }
+
+  WaveletLevelMesh coarse = snapshotMesh(an.live, an.cm.faces(), an.F, C, n);
+  mr.coarse = std::move(coarse.mesh);
+  mr.coarseToFine = an.live;
+  const int nc = static_cast<int>(an.live.size());
+  mr.coarseIntegrals.resize(nc);
+  for (int i = 0; i < nc; ++i) mr.coarseIntegrals[i] = an.A[an.live[i]];
+  mr.coarseAttributes = AttributeSet(nc);
+  mr.coarseNorms.resize(mr.layout.size());
+  int c0 = 3;
+  for (size_t k = 1; k < mr.layout.size(); ++k) {
+    const Attribute& a = mr.layout[k];
+    std::vector<double> values(static_cast<size_t>(nc) * a.dim);
+    for (int i = 0; i < nc; ++i) std::copy_n(an.row(an.live[i]) + c0, a.dim, values.begin() + static_cast<size_t>(i) * a.dim);
+    if (a.kind == AttributeKind::UnitVector) {
+      std::vector<double>& norms = mr.coarseNorms[k];
+      norms.resize(nc);
+      for (int i = 0; i < nc; ++i) {
+        double* r = values.data() + static_cast<size_t>(i) * a.dim;
+        double s = 0;
+        for (int d = 0; d < a.dim; ++d) s += r[d] * r[d];
+        norms[i] = std::sqrt(s);
+        // Opposite normals can cancel; the input row at that vertex is the natural stand-in.
+        if (!(norms[i] > 1e-12)) std::copy_n(signals.get(a.name).row(an.live[i]), a.dim, r);
+      }
+    }
+    mr.coarseAttributes.set(a.name, a.dim, a.kind, std::move(values));
+    c0 += a.dim;
+  }
+  progress.step(1.0, "wavelet analysis");
+  return mr;
+}
+
+}  // namespace geoshift
