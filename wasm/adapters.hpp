@@ -11,4 +11,30 @@ namespace geoshift::wasm {
 // Never throws: bad arguments and the core's InputError messages come back as { ok: false, error }.
 emscripten::val processMesh(const emscripten::val& positions, const emscripten::val& indices);
 
+// loadMesh(positions, indices, extras?: { colors?: Float32Array (3 or 4 per vertex), normals? }):
+// welds and builds a mesh the module keeps; returns { ok, handle, counts, averageEdgeLength, report }.
+emscripten::val loadMesh(const emscripten::val& positions, const emscripten::val& indices, const emscripten::val& extras);
+
+// setAttribute(handle, name, dim, values: Float32Array of dim per caller vertex): adds or replaces a
+// signal ("color", "normal", "_CURVATURE", a terrain attribute...). Returns { ok } or a failure.
+emscripten::val setAttribute(int handle, const std::string& name, int dim, const emscripten::val& values);
+
+// freeMesh(handle): forgets a mesh; true when it existed.
+bool freeMesh(int handle);
+
+// run(handle, op, params, onProgress?): runs one op of the table in ops.cpp. onProgress(fraction,
+// stage) is called from the calling thread at least every ~100 ms of work; returning true asks the
+// run to stop, which then fails with { ok: false, cancelled: true }. On success returns { ok: true,
+// positions?, colors?, scalars: { name: Float32Array }, stats } in the caller's vertex layout and
+// keeps the new positions and signals for the next run.
+emscripten::val run(int handle, const std::string& op, const emscripten::val& params, const emscripten::val& onProgress);
+
+// The same without the optional last argument: embind checks the argument count exactly, so the
+// optional arguments of the JS API are overloads by count.
+emscripten::val loadMeshWithoutExtras(const emscripten::val& positions, const emscripten::val& indices);
+emscripten::val runWithoutProgress(int handle, const std::string& op, const emscripten::val& params);
+
+// ops(): the names of the ops this build knows (the web app asks before offering a preset).
+emscripten::val listOps();
+
 }  // namespace geoshift::wasm

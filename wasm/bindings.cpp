@@ -1,9 +1,16 @@
-// Registrations only; the adapters that turn typed arrays into core calls live in adapters.cpp,
-// and the TypeScript view of these exports is geoshift.d.ts.
+// Registrations only; the adapters that turn typed arrays into core calls live in adapters.cpp and
+// api.cpp, the ops in ops_*.cpp, and the TypeScript view of these exports is geoshift.d.ts.
 #include <emscripten/bind.h>
 
 #include "adapters.hpp"
 
 EMSCRIPTEN_BINDINGS(geoshift) {
   emscripten::function("processMesh", &geoshift::wasm::processMesh);
+  emscripten::function("loadMesh", &geoshift::wasm::loadMesh);
+  emscripten::function("loadMesh", &geoshift::wasm::loadMeshWithoutExtras);
+  emscripten::function("setAttribute", &geoshift::wasm::setAttribute);
+  emscripten::function("freeMesh", &geoshift::wasm::freeMesh);
+  emscripten::function("run", &geoshift::wasm::run);
+  emscripten::function("run", &geoshift::wasm::runWithoutProgress);
+  emscripten::function("ops", &geoshift::wasm::listOps);
 }

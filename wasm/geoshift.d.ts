@@ -56,6 +56,74 @@ export interface Failure {
 
 export type ProcessMeshResult = ProcessMeshSuccess | Failure;
 
+/** Counts and unit of a mesh the module keeps (loadMesh). */
+export interface LoadMeshSuccess {
+  ok: true;
+  /** Pass to setAttribute / run / freeMesh. */
+  handle: number;
+  /** Caller vertices (positions.length / 3): the layout every result comes back in. */
+  vertexCount: number;
+  weldedVertexCount: number;
+  faceCount: number;
+  /** Mean edge length of the welded mesh: the unit (AEL) of every spatial parameter. */
+  averageEdgeLength: number;
+  report: BuildReport;
+}
+export type LoadMeshResult = LoadMeshSuccess | Failure;
+
+/** Per-vertex signals loadMesh can take along (caller layout). */
+export interface MeshExtras {
+  /** RGB or RGBA per vertex, linear [0, 1]; stored as the signal "color" (alpha dropped). */
+  colors?: Float32Array;
+  /** One normal per vertex; stored as the unit-vector signal "normal". */
+  normals?: Float32Array;
+}
+
+/** Parameters of each op (all optional; spatial ones in multiples of the average edge length). */
+export interface OpParams {
+  noise: { amount?: number; distribution?: 'fixed' | 'uniform' | 'gaussian'; direction?: 'random' | 'normal'; seed?: number };
+  smooth: { iterations?: number; lambda?: number; mu?: number; weights?: 'uniform' | 'fujiwara' | 'cotangent' };
+  curvature: { kind?: 'abs' | 'mean' | 'gauss' | 'rms' };
+  /** source: caller vertex index; radius in AEL (default: unlimited). */
+  geodesic: { source?: number; radius?: number };
+  // Added with their ops (ops_filter.cpp, ops_denoise.cpp, ops_wavelet.cpp); untyped until then.
+  [op: string]: Record<string, unknown>;
+}
+export type OpName = keyof OpParams & string;
+
+export interface RunStats {
+  op: string;
+  /** Time inside the module, including the copy-out, in milliseconds. */
+  timeMs: number;
+  vertices: number;
+  weldedVertices: number;
+  /** Threads an op could use in this build (1 in the single-threaded one). */
+  threadsAvailable: number;
+  /** Op-specific figures: iterations, displacementRms, reachedVertices, ... */
+  [key: string]: number | string;
+}
+
+export interface RunSuccess {
+  ok: true;
+  /** New positions (x, y, z per caller vertex) when the op moved vertices. */
+  positions?: Float32Array;
+  /** RGB per caller vertex, linear [0, 1]: a filtered color signal or a color map of a scalar. */
+  colors?: Float32Array;
+  /** Named per-vertex scalars such as _CURVATURE, _GEODESIC (-1 = not reached), _SEGMENT. */
+  scalars: Record<string, Float32Array>;
+  stats: RunStats;
+}
+export interface RunFailure extends Failure {
+  /** Set when onProgress asked the run to stop. */
+  cancelled?: true;
+  /** Set when the heap could not grow enough. */
+  outOfMemory?: true;
+}
+export type RunResult = RunSuccess | RunFailure;
+
+/** Called with the fraction done of the named stage; return true to stop the run. */
+export type ProgressCallback = (fraction: number, stage: string) => boolean | void;
+
 export interface GeoshiftModule {
   /**
    * Welds coincident vertices, builds the mesh and computes its discrete curvatures. The arrays are
@@ -64,6 +132,19 @@ export interface GeoshiftModule {
    * @param indices three vertex indices per triangle, counter-clockwise from outside
    */
   processMesh(positions: Float32Array, indices: Uint32Array): ProcessMeshResult;
+  /** Welds and builds a mesh the module keeps until freeMesh; arrays are copied in. */
+  loadMesh(positions: Float32Array, indices: Uint32Array, extras?: MeshExtras): LoadMeshResult;
+  /** Adds or replaces a per-vertex signal (dim numbers per caller vertex). "normal" is a unit vector. */
+  setAttribute(handle: number, name: string, dim: number, values: Float32Array): { ok: true } | Failure;
+  /** Forgets a mesh; false when the handle was unknown. */
+  freeMesh(handle: number): boolean;
+  /**
+   * Runs an op on a kept mesh. Unknown ops and parameters fail before any work. On success the
+   * mesh keeps the new positions and signals, so ops chain (noise, then a filter).
+   */
+  run<Op extends OpName>(handle: number, op: Op, params: OpParams[Op], onProgress?: ProgressCallback): RunResult;
+  /** Names of the ops this build knows. */
+  ops(): string[];
 }
 
 /** Emscripten module options the app may need; all optional. */

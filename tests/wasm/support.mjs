@@ -7,8 +7,9 @@ import { fileURLToPath } from 'node:url';
 
 export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 // GEOSHIFT_WASM_DIR runs the tests against another build (another exception mode, a debug build).
-export const wasmDir = process.env.GEOSHIFT_WASM_DIR ?? path.join(repoRoot, 'build/wasm-release/wasm');
-export const nativeCli = path.join(repoRoot, 'build/native-release/cli/geoshift');
+export const wasmDir = path.resolve(process.env.GEOSHIFT_WASM_DIR ?? path.join(repoRoot, 'build/wasm-release/wasm'));
+// GEOSHIFT_NATIVE_CLI compares with another native build of the CLI.
+export const nativeCli = path.resolve(process.env.GEOSHIFT_NATIVE_CLI ?? path.join(repoRoot, 'build/native-release/cli/geoshift'));
 // ../shared/data beside the repository (GEOSHIFT_SHARED_DATA overrides); tests skip when absent.
 export const sharedData = process.env.GEOSHIFT_SHARED_DATA || path.join(repoRoot, '../shared/data');
 export const sphereOff = path.join(sharedData, 'cgal_debian_libcgal_demo/data/meshes/sphere.off');

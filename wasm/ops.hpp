@@ -1,0 +1,80 @@
+#pragma once
+// Operations that `run(handle, op, params, onProgress)` dispatches to.
+//
+// Adding an op: write wasm/ops_NAME.cpp defining `OpOutput runNAME(const OpContext&)`, declare it
+// below, and add one line to the table in ops.cpp (name, function, accepted parameter names).
+// wasm/CMakeLists.txt picks up every wasm/*.cpp, and geoshift.d.ts lists the ops and their
+// parameters for TypeScript. An op never changes the session itself: it works on copies and
+// returns what changed; the dispatcher commits that only when the op succeeded.
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <emscripten/val.h>
+
+#include "geoshift/progress.hpp"
+#include "session.hpp"
+
+namespace geoshift::wasm {
+
+// The JS parameter object of one run, read with defaults and range checks. Every message names the
+// op and the parameter, in the JS spelling the caller used.
+class Params {
+ public:
+  Params(std::string op, emscripten::val object) : op_(std::move(op)), object_(std::move(object)) {}
+
+  double number(const char* name, double fallback, double min, double max) const;
+  int integer(const char* name, int fallback, int min, int max) const;
+  bool flag(const char* name, bool fallback) const;
+  // One of `choices`; the message lists them.
+  std::string choice(const char* name, const std::string& fallback, const std::vector<std::string>& choices) const;
+  std::string text(const char* name, const std::string& fallback) const;
+  bool has(const char* name) const;
+
+ private:
+  emscripten::val get(const char* name) const;
+  std::string op_;
+  emscripten::val object_;
+};
+
+struct OpContext {
+  const Session& session;
+  Params params;
+  // Report at least every ~100 ms; step() throws Cancelled once the caller asked to stop.
+  const Progress& progress;
+  // Worker threads an op may start for `requested` (0 = as many as the machine has): 1 in the
+  // single-threaded build, and never more than the pthread pool holds in the threaded one (a
+  // thread beyond the pool would wait for a worker the blocked caller can never start).
+  int threads(int requested) const;
+};
+
+struct OpOutput {
+  // New positions of the welded mesh's vertices, when the op moved them.
+  std::optional<std::vector<Vec3>> positions;
+  // RGB per welded vertex (linear, [0,1]). `colorsAreSignal`: they replace the "color" signal
+  // (a color filter); otherwise they only visualise something (a curvature color map).
+  std::optional<std::vector<double>> colors;
+  bool colorsAreSignal = false;
+  // Named per-welded-vertex scalars (e.g. "_CURVATURE", "_SEGMENT"); kept as signals of the session.
+  std::vector<std::pair<std::string, std::vector<double>>> scalars;
+  // Numbers worth showing after a run (iterations, ...); the dispatcher adds timing and counts.
+  emscripten::val stats = emscripten::val::object();
+};
+
+using OpFunction = OpOutput (*)(const OpContext&);
+
+struct OpEntry {
+  const char* name;
+  OpFunction run;
+  std::vector<std::string> params;  // accepted names; anything else is rejected before running
+};
+
+const std::vector<OpEntry>& opTable();
+
+OpOutput runNoise(const OpContext&);      // ops_noise.cpp
+OpOutput runSmooth(const OpContext&);     // ops_smooth.cpp
+OpOutput runCurvature(const OpContext&);  // ops_curvature.cpp
+OpOutput runGeodesic(const OpContext&);   // ops_geodesic.cpp
+
+}  // namespace geoshift::wasm
