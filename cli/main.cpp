@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
   using namespace geoshift::cli;
   const std::vector<Command> commands = {addInfo(app), addNoise(app), addSmooth(app),
                                          addCurvature(app), addCompare(app),  addGeodesic(app),
-                                         addLogMap(app),    addExpMap(app)};
+                                         addLogMap(app),    addExpMap(app),     addDenoise(app)};
 
   try {
     app.parse(argc, argv);

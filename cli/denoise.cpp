@@ -1,0 +1,123 @@
+// geoshift denoise: remove noise from vertex positions, keeping sharp features. Methods are listed
+// in one table so that further denoisers plug in with a row.
+#include <chrono>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include "commands.hpp"
+#include "geoshift/bilateral_normal.hpp"
+#include "geoshift/error.hpp"
+#include "geoshift/smoothing.hpp"
+
+namespace geoshift::cli {
+namespace {
+
+struct DenoiseArgs {
+  std::string in, out;
+  std::string method = "bilateral";
+  BilateralNormalOptions bilateral;
+  std::string neighborhood = "vertex";
+  std::string flipGuard = "input";
+  int vertexIterations = -1;  // < 0: the method's own default
+  bool fixedBoundary = false;
+  TaubinOptions taubin;
+};
+
+struct Method {
+  std::string name;
+  std::string help;
+  std::function<void(Mesh&, const DenoiseArgs&)> run;
+};
+
+VertexUpdateOptions vertexUpdateOf(const DenoiseArgs& a, VertexUpdateOptions o) {
+  if (a.vertexIterations >= 0) o.iterations = a.vertexIterations;
+  o.fixedBoundary = a.fixedBoundary;
+  o.flipGuard = a.flipGuard == "input-or-target" ? FlipGuard::InputOrTarget : FlipGuard::Input;
+  return o;
+}
+
+const std::vector<Method>& methods() {
+  static const std::vector<Method> table = {
+      {"bilateral", "bilateral normal filtering (Zheng et al. 2011), then the vertex update",
+       [](Mesh& mesh, const DenoiseArgs& a) {
+         BilateralNormalOptions o = a.bilateral;
+         o.neighborhood = a.neighborhood == "edge" ? FaceNeighborhood::Edge : FaceNeighborhood::Vertex;
+         o.vertexUpdate = vertexUpdateOf(a, o.vertexUpdate);
+         bilateralNormalDenoise(mesh, o);
+       }},
+      {"taubin", "Taubin lambda|mu smoothing (not feature-preserving; a baseline)",
+       [](Mesh& mesh, const DenoiseArgs& a) { taubinSmooth(mesh, a.taubin); }},
+  };
+  return table;
+}
+
+const Method& methodNamed(const std::string& name) {
+  for (const Method& m : methods())
+    if (m.name == name) return m;
+  throw InputError("denoise: unknown method '" + name + "'");
+}
+
+}  // namespace
+
+Command addDenoise(CLI::App& app) {
+  auto a = std::make_shared<DenoiseArgs>();
+  CLI::App* sub = app.add_subcommand("denoise", "Remove noise from vertex positions, keeping sharp features");
+  sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off)")->required();
+  sub->add_option("-o,--output", a->out, "output mesh; format from its extension")->required();
+  std::vector<std::string> names;
+  std::ostringstream help;
+  help << "denoising method:";
+  for (const Method& m : methods()) {
+    names.push_back(m.name);
+    help << "\n  " << m.name << ": " << m.help;
+  }
+  sub->add_option("--method", a->method, help.str())->check(CLI::IsMember(names))->capture_default_str();
+
+  sub->add_option("--normal-iterations", a->bilateral.normalIterations, "bilateral: normal filtering iterations")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  sub->add_option("--sigma-c", a->bilateral.sigmaSpatial,
+                  "bilateral: spatial sigma in average edge lengths; 0 = mean distance of adjacent face centroids")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  sub->add_option("--sigma-s", a->bilateral.sigmaRange, "bilateral: range sigma on normal differences, > 0")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  sub->add_option("--neighbors", a->neighborhood, "bilateral: faces sharing a vertex or an edge")
+      ->check(CLI::IsMember({"vertex", "edge"}))->capture_default_str();
+  sub->add_option("--vertex-iterations", a->vertexIterations, "vertex update iterations (default: the method's, 10 for bilateral)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--fixed-boundary", a->fixedBoundary, "keep boundary vertices in place");
+  sub->add_option("--flip-guard", a->flipGuard,
+                  "input: no face ends up flipped relative to the input; input-or-target: faces the noise folded may unfold")
+      ->check(CLI::IsMember({"input", "input-or-target"}))->capture_default_str();
+
+  sub->add_option("--taubin-iterations", a->taubin.iterations, "taubin: lambda|mu step pairs")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  sub->add_option("--lambda", a->taubin.lambda, "taubin: shrinking step, > 0")->capture_default_str();
+  sub->add_option("--mu", a->taubin.mu, "taubin: inflating step, < -lambda")->capture_default_str();
+
+  return {sub, [a] {
+            const Method& method = methodNamed(a->method);
+            const auto start = std::chrono::steady_clock::now();
+            Document doc = load(a->in);
+            long vertices = 0;
+            double filterSeconds = 0;
+            for (MeshPart& part : doc.parts) {
+              MeshBuild b = buildPart(doc, part);
+              const auto t0 = std::chrono::steady_clock::now();
+              method.run(b.mesh, *a);
+              filterSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+              vertices += b.mesh.vertexCount();
+              writeBack(part, b);
+            }
+            save(doc, a->out);
+            const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::cerr << "geoshift: denoise " << method.name << ": " << vertices << " vertices in " << doc.parts.size()
+                      << (doc.parts.size() == 1 ? " part" : " parts") << ", filter " << static_cast<long>(filterSeconds * 1000 + 0.5)
+                      << " ms, total " << static_cast<long>(total * 1000 + 0.5) << " ms -> " << a->out << "\n";
+          }};
+}
+
+}  // namespace geoshift::cli
