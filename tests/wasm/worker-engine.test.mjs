@@ -107,6 +107,9 @@ test('a shared cancel flag holding the run id stops that run only', () => {
   Atomics.store(flag, 0, 2);
   engine.handle({ type: 'run', id: 2, meshId: 'm', op: 'smooth', params: { iterations: 100000 } });
   assert.deepEqual(messages().at(-1), { type: 'error', id: 2, kind: 'cancelled', message: 'cancelled' });
+  // The cancel message itself reaches the worker only after the run; it is answered, nothing more.
+  engine.handle({ type: 'cancel', id: 9, runId: 2 });
+  assert.deepEqual(messages().at(-1), { type: 'result', id: 9, kind: 'cancel' });
   // A later run with another id is not affected by the stale flag.
   engine.handle({ type: 'run', id: 3, meshId: 'm', op: 'smooth', params: { iterations: 2 } });
   assert.equal(messages().at(-1).type, 'result');
@@ -117,5 +120,6 @@ test('requests are checked at run time', () => {
   assert.equal(isRequest({ type: 'run', id: 1, meshId: 'm', op: 'smooth' }), false);
   assert.equal(isRequest({ type: 'explode', id: 1 }), false);
   assert.equal(isRequest(null), false);
-  assert.equal(isRequest({ type: 'cancel', id: 4 }), true);
+  assert.equal(isRequest({ type: 'cancel', id: 4, runId: 3 }), true);
+  assert.equal(isRequest({ type: 'cancel', id: 4 }), false);
 });

@@ -1,7 +1,7 @@
 // Opening files: load, show, report. A failed load leaves the previous model on screen; when two
 // loads overlap (a second file dropped while the first still parses), only the last one is shown.
 
-import { describeLoadFailure, loadModel, LoadError, type MeshCounts } from './loaders';
+import { describeLoadFailure, loadModel, LoadError, type LoadedModel, type MeshCounts } from './loaders';
 import type { StatusLine } from './status';
 import type { Viewer } from './viewer';
 import type { ViewModeControl } from './view-mode-control';
@@ -19,6 +19,8 @@ export class App {
     private readonly viewer: Viewer,
     private readonly status: StatusLine,
     private readonly viewMode: ViewModeControl,
+    /** Told about every model put on screen (the filter panel takes it from there). */
+    private readonly onShown: (model: LoadedModel, fileName: string) => void = () => undefined,
   ) {}
 
   /** Stats of the model on screen, or null before the first successful load. */
@@ -63,6 +65,7 @@ export class App {
         if (ticket !== this.latest) return;
         this.viewMode.modelChanged(model.hasVertexColors);
         this.viewer.setModel(model);
+        this.onShown(model, fileName);
         this.shown = { file: fileName, ...model.counts };
         this.status.shown(fileName, model.counts);
       } catch (error) {

@@ -5,8 +5,24 @@ interface GeoshiftTestHooks {
   ready: Promise<void>;
   /** The model on screen, or null if none could be shown. */
   stats(): { vertices: number; triangles: number; file: string } | null;
-  /** Resolves when no file is loading and the latest change has been drawn. */
+  /** Resolves when no file is loading, no filter is running, and the latest change has been drawn. */
   settled(): Promise<void>;
+  /** What the worker runs: { threaded, threads, ops }; rejects when it cannot start. */
+  workerReady(): Promise<{ threaded: boolean; threads: number; ops: string[] }>;
+  /** Resolves when no filter is running. */
+  idle(): Promise<void>;
+  /** The report of the last successful run (time, vertices, iterations, error), or null. */
+  lastRun(): unknown;
+  /** The plain-words message of the last failed or cancelled run, or null. */
+  lastError(): string | null;
+  /** Progress events of the current or last run; `at` is performance.now() on arrival. */
+  progressEvents(): Array<{ fraction: number; stage: string; stageFraction: number; at: number }>;
+  /** Positions of every mesh on screen, as plain arrays. */
+  positions(): number[][];
+  /** A scalar attribute of every mesh (null where a mesh lacks it), as plain arrays. */
+  scalar(name: string): Array<number[] | null>;
+  /** The bytes Export would download, base64-encoded. */
+  exportGlb(): Promise<string>;
 }
 
 interface Window {

@@ -6,6 +6,7 @@
 // letting the loader request it from our server.
 
 import { Group } from 'three';
+import { DRACO_GLTF_CONFIG, DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { MeshoptDecoder } from 'three/examples/jsm/libs/meshopt_decoder.module.js';
 import { LoadError } from './load-error';
@@ -62,10 +63,6 @@ function readGlbJson(data: ArrayBuffer): { json: GltfJson; binLength: number } {
   return { json, binLength };
 }
 
-function listed(list: unknown, name: string): boolean {
-  return Array.isArray(list) && list.includes(name);
-}
-
 function externalUri(uri: unknown): string | null {
   if (typeof uri !== 'string' || uri.startsWith('data:')) return null;
   try {
@@ -80,10 +77,6 @@ function checkJson(json: GltfJson, binLength: number): void {
   const version = json.asset?.version;
   if (typeof version !== 'string' || !version.startsWith('2.')) {
     throw new LoadError(`it is not glTF 2.0 (asset.version is ${JSON.stringify(version ?? null)})`);
-  }
-  const draco = 'KHR_draco_mesh_compression';
-  if (listed(json.extensionsUsed, draco) || listed(json.extensionsRequired, draco)) {
-    throw new LoadError('this file uses Draco compression, not supported yet');
   }
   for (const [i, buffer] of (json.buffers ?? []).entries()) {
     const missing = externalUri(buffer.uri);
@@ -125,8 +118,12 @@ export async function parseGltf(data: ArrayBuffer, extension: '.glb' | '.gltf'):
   }
   if (!loader) {
     loader = new GLTFLoader();
-    // The decoder is plain JS+wasm embedded in the three package: no extra files to serve.
+    // The meshopt decoder is plain JS+wasm embedded in the three package: no extra files to serve.
     loader.setMeshoptDecoder(MeshoptDecoder);
+    // The Draco decoder (three/examples/jsm/libs/draco/gltf) is referenced by DRACOLoader through
+    // `new URL(..., import.meta.url)`, so Vite serves it and copies it into dist/ like any asset:
+    // never a CDN, so files stay local and the page works offline and under COEP.
+    loader.setDRACOLoader(new DRACOLoader().setDecoderPath(DRACO_GLTF_CONFIG));
   }
   const gltf = await loader.parseAsync(data, './');
   // A glTF without scenes is valid (a library of meshes) but has nothing to show.

@@ -3,9 +3,15 @@
 import './style.css';
 import { App } from './app';
 import { installDropZone } from './dropzone';
+import { FilterControls } from './filter-controls';
+import { Legend } from './legend';
+import { ParameterPanel } from './panel';
+import { ProgressBar } from './progress-bar';
+import { ScalarView } from './scalar-view';
 import { StatusLine } from './status';
 import { ViewModeControl } from './view-mode-control';
 import { Viewer } from './viewer';
+import { WorkerClient } from './worker/client';
 
 const SAMPLE = { url: `${import.meta.env.BASE_URL}samples/ChineseDragon-10kv.off`, name: 'ChineseDragon-10kv.off' };
 
@@ -13,6 +19,12 @@ function element<T extends HTMLElement>(testId: string, type: new () => T): T {
   const found = document.querySelector(`[data-testid="${testId}"]`);
   if (!(found instanceof type)) throw new Error(`index.html lacks the ${testId} element`);
   return found;
+}
+
+/** ?build=single|threaded forces a wasm build (comparisons, tests); default: what the page allows. */
+function requestedBuild(): 'auto' | 'single' | 'threaded' {
+  const build = new URLSearchParams(location.search).get('build');
+  return build === 'single' || build === 'threaded' ? build : 'auto';
 }
 
 function start(): Promise<void> {
@@ -23,11 +35,56 @@ function start(): Promise<void> {
   } catch (error) {
     console.error(error);
     status.error('This browser cannot show 3D graphics (WebGL is unavailable or disabled).');
-    window.__geoshift = { ready: Promise.resolve(), stats: () => null, settled: () => Promise.resolve() };
+    window.__geoshift = { ready: Promise.resolve(), stats: () => null, settled: () => Promise.resolve() } as unknown as Window['__geoshift'];
     return window.__geoshift.ready;
   }
-  const viewMode = new ViewModeControl(element('view-mode', HTMLSelectElement), viewer);
-  const app = new App(viewer, status, viewMode);
+  const legend = new Legend(element('legend', HTMLElement));
+  const scalars = new ScalarView(element('scalar-select', HTMLSelectElement), legend, () => viewer.geometryChanged());
+  const viewMode = new ViewModeControl(element('view-mode', HTMLSelectElement), viewer, (mode) => scalars.setActive(mode === 'scalar'));
+
+  const wasmBase = new URL(`${import.meta.env.BASE_URL}wasm/`, location.href).href;
+  const client = new WorkerClient(wasmBase, requestedBuild());
+  const panel = new ParameterPanel(
+    element('preset-select', HTMLSelectElement),
+    element('preset-summary', HTMLElement),
+    element('params', HTMLElement),
+    () => filters.refresh(),
+  );
+  const filters = new FilterControls(
+    {
+      run: element('run-button', HTMLButtonElement),
+      cancel: element('cancel-button', HTMLButtonElement),
+      addNoise: element('add-noise-button', HTMLButtonElement),
+      noiseAmount: element('noise-amount', HTMLInputElement),
+      revert: element('revert-button', HTMLButtonElement),
+      export: element('export-button', HTMLButtonElement),
+      beforeToggle: element('before-toggle', HTMLInputElement),
+      split: element('split-slider', HTMLInputElement),
+      splitLine: element('split-line', HTMLElement),
+      metrics: element('metrics', HTMLElement),
+    },
+    client,
+    panel,
+    new ProgressBar(element('progress', HTMLElement)),
+    viewer,
+    viewMode,
+    scalars,
+    status,
+  );
+  const app = new App(viewer, status, viewMode, (model, fileName) => filters.setModel(model, fileName));
+
+  const workerReady = client.ready().then(
+    (info) => {
+      panel.setAvailableOps(info.ops);
+      filters.refresh();
+      return info;
+    },
+    (error: unknown) => {
+      status.error(`The filters cannot run in this browser: ${error instanceof Error ? error.message : String(error)}. Viewing still works.`);
+      throw error;
+    },
+  );
+  workerReady.catch(() => undefined);
 
   const input = element('file-input', HTMLInputElement);
   input.addEventListener('change', () => {
@@ -38,9 +95,40 @@ function start(): Promise<void> {
   });
   installDropZone(document.body, element('drop-overlay', HTMLElement), (file) => void app.openFile(file));
   element('reset-view', HTMLButtonElement).addEventListener('click', () => viewer.fitToView());
+  // Alt+click picks the source vertex of the geodesic distance.
+  viewer.canvas.addEventListener('click', (event) => {
+    if (!event.altKey || panel.preset().op !== 'geodesic') return;
+    const hit = viewer.pick(event.clientX, event.clientY);
+    if (hit) panel.set('source', hit.vertex);
+  });
 
   const ready = app.openUrl(SAMPLE.url, SAMPLE.name).then(() => app.settled());
-  window.__geoshift = { ready, stats: () => app.stats(), settled: () => app.settled() };
+  window.__geoshift = {
+    ready,
+    stats: () => app.stats(),
+    settled: async () => {
+      await filters.idle();
+      await app.settled();
+    },
+    workerReady: () => workerReady,
+    idle: () => filters.idle(),
+    lastRun: () => filters.lastReport,
+    lastError: () => filters.lastError,
+    progressEvents: () => filters.progressEvents.slice(),
+    positions: () => filters.positions().map((p) => Array.from(p)),
+    scalar: (name: string) =>
+      filters.meshes().map((mesh) => {
+        const a = mesh.geometry.getAttribute(name);
+        return a ? Array.from(a.array as ArrayLike<number>) : null;
+      }),
+    exportGlb: async () => {
+      // Base64: a GLB as a JSON array of numbers would be several times larger to pass to a test.
+      const bytes = new Uint8Array(await filters.exportBytes());
+      let binary = '';
+      for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+      return btoa(binary);
+    },
+  };
   return ready;
 }
 

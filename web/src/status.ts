@@ -1,5 +1,5 @@
-// The status line in the header: what is on screen, what is loading, or what went wrong.
-// data-state lets tests and styles tell the three apart without parsing the text.
+// The status line in the header: what is on screen, what is loading or running, or what went wrong.
+// data-state lets tests and styles tell them apart without parsing the text.
 
 import type { MeshCounts } from './loaders';
 
@@ -19,12 +19,22 @@ export class StatusLine {
     );
   }
 
+  /** A filter is running on the model on screen. */
+  working(text: string): void {
+    this.set('working', text);
+  }
+
+  /** A filter finished (or the mesh was reverted). */
+  done(text: string): void {
+    this.set('ok', text);
+  }
+
   /** An error keeps the previous mesh on screen, so the message says which file failed. */
   error(message: string): void {
     this.set('error', message);
   }
 
-  private set(state: 'loading' | 'ok' | 'error', text: string): void {
+  private set(state: 'loading' | 'working' | 'ok' | 'error', text: string): void {
     this.element.dataset.state = state;
     this.element.textContent = text;
     this.element.title = text;

@@ -1,4 +1,4 @@
-// The view mode <select>: shaded, vertex colors, wireframe.
+// The view mode <select>: shaded, vertex colors, scalar field, wireframe.
 
 import { isViewMode, type ViewMode } from './materials';
 import type { Viewer } from './viewer';
@@ -9,10 +9,12 @@ export class ViewModeControl {
   constructor(
     private readonly select: HTMLSelectElement,
     private readonly viewer: Viewer,
+    /** Told about every mode change (the scalar legend shows only in scalar mode). */
+    private readonly onMode: (mode: ViewMode) => void = () => undefined,
   ) {
     this.colorsOption = select.querySelector<HTMLOptionElement>('option[value="colors"]');
-    select.addEventListener('change', () => this.viewer.setViewMode(this.mode()));
-    this.viewer.setViewMode(this.mode());
+    select.addEventListener('change', () => this.apply());
+    this.apply();
   }
 
   /**
@@ -26,12 +28,23 @@ export class ViewModeControl {
     else if (!hasVertexColors && mode === 'colors') this.set('shaded');
   }
 
+  /** Switches to a mode (after a run that produced a scalar field, to show it). */
+  show(mode: ViewMode): void {
+    this.set(mode);
+  }
+
   private mode(): ViewMode {
     return isViewMode(this.select.value) ? this.select.value : 'shaded';
   }
 
   private set(mode: ViewMode): void {
     this.select.value = mode;
+    this.apply();
+  }
+
+  private apply(): void {
+    const mode = this.mode();
     this.viewer.setViewMode(mode);
+    this.onMode(mode);
   }
 }

@@ -3,10 +3,13 @@
 // nothing, which matters once the wasm filters share the CPU with it.
 
 import {
+  BufferGeometry,
   Color,
   DirectionalLight,
   HemisphereLight,
   PerspectiveCamera,
+  Raycaster,
+  Vector2,
   Scene,
   Sphere,
   Vector3,
@@ -22,6 +25,17 @@ export interface ViewerModel {
   meshes: Mesh[];
 }
 
+/**
+ * Before/after comparison: `before` holds the geometry each mesh had before the last change. With
+ * `split` set, the left `split` fraction of the view shows before and the rest after; otherwise
+ * `showBefore` picks one for the whole view.
+ */
+export interface Comparison {
+  before: Map<Mesh, BufferGeometry>;
+  showBefore: boolean;
+  split: number | null;
+}
+
 // The default view looks at the model from the front, a little from above and the right.
 const VIEW_DIRECTION = new Vector3(0.35, 0.3, 1).normalize();
 const CAMERA_UP = new Vector3(0, 1, 0);
@@ -35,6 +49,7 @@ export class Viewer {
   private readonly hemisphere = new HemisphereLight(0xffffff, 0x3a3d44, 1.1);
   private model: ViewerModel | null = null;
   private mode: ViewMode = 'shaded';
+  private comparison: Comparison = { before: new Map(), showBefore: false, split: null };
   private frameRequested = false;
   private frameWaiters: Array<() => void> = [];
 
@@ -71,6 +86,7 @@ export class Viewer {
       this.scene.remove(this.model.root);
       for (const mesh of this.model.meshes) mesh.geometry.dispose();
     }
+    this.comparison = { before: new Map(), showBefore: false, split: null };
     this.model = model;
     this.scene.add(model.root);
     this.applyMode();
@@ -80,6 +96,16 @@ export class Viewer {
   setViewMode(mode: ViewMode): void {
     this.mode = mode;
     this.applyMode();
+  }
+
+  /** Re-picks materials after attributes were added or removed (new colors, a scalar field). */
+  geometryChanged(): void {
+    this.applyMode();
+  }
+
+  setComparison(comparison: Comparison): void {
+    this.comparison = comparison;
+    this.requestRender();
   }
 
   /** Frames the whole model: centred, filling the view, seen from the default direction. */
@@ -103,6 +129,27 @@ export class Viewer {
     this.requestRender();
   }
 
+  /** The mesh and the nearest corner of the triangle under a point of the canvas, if any. */
+  pick(clientX: number, clientY: number): { mesh: Mesh; vertex: number } | null {
+    if (!this.model) return null;
+    const rect = this.canvas.getBoundingClientRect();
+    const ndc = new Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1);
+    const raycaster = new Raycaster();
+    raycaster.setFromCamera(ndc, this.camera);
+    const hit = raycaster.intersectObjects(this.model.meshes, false)[0];
+    if (!hit?.face) return null;
+    const mesh = hit.object as Mesh;
+    const position = mesh.geometry.getAttribute('position');
+    const local = mesh.worldToLocal(hit.point.clone());
+    let best = hit.face.a;
+    let bestDistance = Infinity;
+    for (const v of [hit.face.a, hit.face.b, hit.face.c]) {
+      const d = local.distanceToSquared(new Vector3().fromBufferAttribute(position, v));
+      if (d < bestDistance) [best, bestDistance] = [v, d];
+    }
+    return { mesh, vertex: best };
+  }
+
   /** Resolves after the next frame has been drawn (requesting one if none is pending). */
   nextFrame(): Promise<void> {
     return new Promise((resolve) => {
@@ -123,10 +170,44 @@ export class Viewer {
     // which requests the next frame until the motion settles.
     this.controls.update();
     this.updateLights();
-    this.renderer.render(this.scene, this.camera);
+    const { before, showBefore, split } = this.comparison;
+    if (before.size > 0 && split !== null) {
+      const width = Math.max(1, this.container.clientWidth);
+      const height = Math.max(1, this.container.clientHeight);
+      const cut = Math.round(width * Math.min(1, Math.max(0, split)));
+      this.renderer.setScissorTest(true);
+      this.renderer.setScissor(0, 0, cut, height);
+      this.renderWith(before);
+      this.renderer.setScissor(cut, 0, width - cut, height);
+      this.renderer.render(this.scene, this.camera);
+      this.renderer.setScissorTest(false);
+    } else if (before.size > 0 && showBefore) {
+      this.renderWith(before);
+    } else {
+      this.renderer.render(this.scene, this.camera);
+    }
     const waiters = this.frameWaiters;
     this.frameWaiters = [];
     for (const resolve of waiters) resolve();
+  }
+
+  // The meshes keep their current geometry (export and stats read it); the earlier one is swapped
+  // in only for this draw.
+  private renderWith(geometries: Map<Mesh, BufferGeometry>): void {
+    const current = new Map<Mesh, BufferGeometry>();
+    for (const [mesh, geometry] of geometries) {
+      current.set(mesh, mesh.geometry);
+      mesh.geometry = geometry;
+      mesh.material = materialFor(this.mode, mesh);
+    }
+    try {
+      this.renderer.render(this.scene, this.camera);
+    } finally {
+      for (const [mesh, geometry] of current) {
+        mesh.geometry = geometry;
+        mesh.material = materialFor(this.mode, mesh);
+      }
+    }
   }
 
   private updateLights(): void {
@@ -135,7 +216,11 @@ export class Viewer {
 
   private applyMode(): void {
     if (!this.model) return;
-    for (const mesh of this.model.meshes) mesh.material = materialFor(this.mode, mesh);
+    for (const mesh of this.model.meshes) {
+      // The file's own material is kept for export (model.ts puts it back there).
+      if (mesh.userData.fileMaterial === undefined) mesh.userData.fileMaterial = mesh.material;
+      mesh.material = materialFor(this.mode, mesh);
+    }
     this.requestRender();
   }
 

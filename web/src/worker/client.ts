@@ -41,6 +41,7 @@ export class WorkerClient {
   private readonly cancelFlag: Int32Array | null;
   private started!: Promise<WorkerInfo>;
   private runningId = 0;
+  private threaded = false;
 
   constructor(
     private readonly wasmBase: string,
@@ -76,6 +77,7 @@ export class WorkerClient {
     if (!id || !this.pending.has(id)) return;
     if (this.cancelFlag && this.threaded) {
       Atomics.store(this.cancelFlag, 0, id);
+      this.worker.postMessage({ type: 'cancel', id: this.nextId++, runId: id } satisfies Request);
       // An op that does not report progress for a while cannot see the flag: do not wait for it.
       setTimeout(() => {
         if (this.pending.has(id)) this.respawn();
@@ -95,8 +97,6 @@ export class WorkerClient {
     this.worker.terminate();
     this.failAll(new GeoshiftError('the worker was closed', 'internal'));
   }
-
-  private threaded = false;
 
   private spawn(): void {
     this.worker = new Worker(new URL('./geoshift.worker.ts', import.meta.url), { type: 'module' });

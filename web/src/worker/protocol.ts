@@ -18,8 +18,12 @@ export interface MeshArrays {
 export type Request =
   | ({ type: 'load'; id: number; meshId: string } & MeshArrays)
   | { type: 'run'; id: number; meshId: string; op: string; params: Record<string, unknown> }
-  /** Asks the run with this id to stop (the single-threaded build cannot hear it: see client.ts). */
-  | { type: 'cancel'; id: number }
+  /**
+   * Asks run `runId` to stop. A run blocks the worker, so this message is read only after the run
+   * ended; the shared flag (threaded build) or terminating the worker does the actual stopping (see
+   * client.ts). It is answered, and keeps a log of the exchange complete.
+   */
+  | { type: 'cancel'; id: number; runId: number }
   /** Forgets a mesh (a new file replaced it). */
   | { type: 'free'; id: number; meshId: string };
 
@@ -71,6 +75,8 @@ export function isRequest(value: unknown): value is Request {
       return typeof v.meshId === 'string' && typeof v.op === 'string' && typeof v.params === 'object' && v.params !== null;
     case 'free':
       return typeof v.meshId === 'string';
+    case 'cancel':
+      return typeof v.runId === 'number';
     default:
       return true;
   }

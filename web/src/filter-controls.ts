@@ -1,0 +1,239 @@
+// The filter side of the page: Run / Cancel / Add noise / Revert / Export, the progress bar, the
+// before/after comparison and the metrics of the last run. It owns the MeshStates of the model on
+// screen; the loader side (app.ts) hands every new model over through setModel.
+
+import type { Mesh } from 'three';
+import type { LoadedModel } from './loaders';
+import { exportGlb, download, exportName } from './export';
+import { meshStates, revert, scalarNames, type MeshState } from './model';
+import type { ParameterPanel } from './panel';
+import { NOISE, paramsOf, type Preset } from './presets';
+import type { ProgressBar } from './progress-bar';
+import { describeRunFailure, runOnMeshes, type ProgressEvent, type RunReport } from './runner';
+import type { ScalarView } from './scalar-view';
+import type { StatusLine } from './status';
+import type { Viewer } from './viewer';
+import type { ViewModeControl } from './view-mode-control';
+import type { WorkerClient } from './worker/client';
+
+export interface FilterElements {
+  run: HTMLButtonElement;
+  cancel: HTMLButtonElement;
+  addNoise: HTMLButtonElement;
+  noiseAmount: HTMLInputElement;
+  revert: HTMLButtonElement;
+  export: HTMLButtonElement;
+  beforeToggle: HTMLInputElement;
+  split: HTMLInputElement;
+  splitLine: HTMLElement;
+  metrics: HTMLElement;
+}
+
+const count = new Intl.NumberFormat('en-US');
+
+export class FilterControls {
+  private model: LoadedModel | null = null;
+  private fileName = '';
+  private states: MeshState[] = [];
+  private busy = false;
+  private cancelRequested = false;
+  private noiseSeed = 1;
+  /** For the tests: the last finished run, and every progress event of the current/last run. */
+  lastReport: RunReport | null = null;
+  lastError: string | null = null;
+  progressEvents: ProgressEvent[] = [];
+  private current: Promise<void> = Promise.resolve();
+
+  constructor(
+    private readonly el: FilterElements,
+    private readonly client: WorkerClient,
+    private readonly panel: ParameterPanel,
+    private readonly progress: ProgressBar,
+    private readonly viewer: Viewer,
+    private readonly viewMode: ViewModeControl,
+    private readonly scalars: ScalarView,
+    private readonly status: StatusLine,
+  ) {
+    el.run.addEventListener('click', () => void this.run(this.panel.preset(), this.panel.params()));
+    el.addNoise.addEventListener('click', () => {
+      const amount = Number(el.noiseAmount.value);
+      void this.run(NOISE, paramsOf(NOISE, { amount: Number.isFinite(amount) ? amount : 0.5, seed: this.noiseSeed++ }));
+    });
+    el.cancel.addEventListener('click', () => {
+      this.cancelRequested = true;
+      this.client.cancel();
+    });
+    el.revert.addEventListener('click', () => this.revert());
+    el.export.addEventListener('click', () => void this.exportFile());
+    el.beforeToggle.addEventListener('change', () => this.updateComparison());
+    el.split.addEventListener('input', () => this.updateComparison());
+    this.updateButtons();
+  }
+
+  setModel(model: LoadedModel, fileName: string): void {
+    for (const old of this.states) {
+      old.before?.dispose();
+      old.original.dispose();
+      void this.client.free(old.id).catch(() => undefined);
+    }
+    this.model = model;
+    this.fileName = fileName;
+    this.states = meshStates(model.meshes);
+    this.el.beforeToggle.checked = false;
+    this.el.split.value = '0';
+    this.lastReport = null;
+    this.showMetrics(null);
+    this.scalars.setStates(this.states);
+    this.panel.setScalarChoices(this.scalarChoices());
+    this.updateComparison();
+    this.updateButtons();
+  }
+
+  /** Resolves when no run is in progress. */
+  idle(): Promise<void> {
+    return this.current;
+  }
+
+  /** Positions of every mesh (tests compare builds and exports with them). */
+  positions(): Float32Array[] {
+    return this.states.map((s) => Float32Array.from(s.mesh.geometry.getAttribute('position').array as ArrayLike<number>));
+  }
+
+  meshes(): Mesh[] {
+    return this.states.map((s) => s.mesh);
+  }
+
+  async exportBytes(): Promise<ArrayBuffer> {
+    if (!this.model) throw new Error('no model is open');
+    return exportGlb(this.model.root, this.model.meshes);
+  }
+
+  run(preset: Preset, params: Record<string, unknown>): Promise<void> {
+    if (this.busy || this.states.length === 0) return this.current;
+    this.busy = true;
+    this.cancelRequested = false;
+    this.lastError = null;
+    this.progressEvents = [];
+    this.updateButtons();
+    this.progress.start(preset.name);
+    this.status.working(`${preset.name}: running on ${this.fileName}…`);
+    const states = this.states;
+    const task = async () => {
+      try {
+        const report = await runOnMeshes(this.client, states, preset, params, (event) => {
+          this.progressEvents.push(event);
+          this.progress.update(event.fraction, event.stage, event.stageFraction);
+        }, () => this.cancelRequested);
+        if (states !== this.states) return; // another file was opened meanwhile
+        this.lastReport = report;
+        this.afterRun(preset, report);
+      } catch (error) {
+        this.lastError = describeRunFailure(error);
+        this.progress.idle(this.lastError);
+        this.status.error(`${preset.name}: ${this.lastError}`);
+      } finally {
+        this.busy = false;
+        this.updateButtons();
+      }
+    };
+    this.current = task();
+    return this.current;
+  }
+
+  private afterRun(preset: Preset, report: RunReport): void {
+    const seconds = (report.wallMs / 1000).toFixed(report.wallMs < 10_000 ? 2 : 1);
+    this.progress.idle(`Done in ${seconds} s`);
+    this.status.done(`${preset.name} done on ${this.fileName} in ${seconds} s`);
+    this.showMetrics(report);
+    this.viewMode.modelChanged(this.states.some((s) => s.mesh.geometry.getAttribute('color') !== undefined));
+    this.panel.setScalarChoices(this.scalarChoices());
+    const shown = preset.showsScalar && report.scalars.includes(preset.showsScalar) ? preset.showsScalar : report.scalars[0];
+    this.scalars.setStates(this.states);
+    if (shown && preset.op !== 'noise') {
+      this.scalars.choose(shown);
+      this.viewMode.show('scalar');
+    }
+    this.viewer.geometryChanged();
+    this.updateComparison();
+  }
+
+  private revert(): void {
+    if (this.busy) return;
+    for (const state of this.states) revert(state);
+    this.scalars.setStates(this.states);
+    this.viewer.geometryChanged();
+    this.lastReport = null;
+    this.showMetrics(null);
+    this.updateComparison();
+    this.updateButtons();
+    this.status.done(`${this.fileName}: back to the mesh as it was opened`);
+  }
+
+  private async exportFile(): Promise<void> {
+    if (!this.model) return;
+    try {
+      download(await this.exportBytes(), exportName(this.fileName));
+    } catch (error) {
+      this.status.error(`Could not export: ${error instanceof Error ? error.message : String(error)}`);
+    }
+  }
+
+  private scalarChoices(): string[] {
+    const names = new Set<string>();
+    for (const s of this.states) for (const n of scalarNames(s.mesh.geometry)) names.add(n);
+    return [...names];
+  }
+
+  private updateComparison(): void {
+    const before = new Map();
+    for (const s of this.states) if (s.before) before.set(s.mesh, s.before);
+    const split = Number(this.el.split.value) / 100;
+    const splitting = before.size > 0 && split > 0;
+    this.viewer.setComparison({ before, showBefore: this.el.beforeToggle.checked, split: splitting ? split : null });
+    this.el.splitLine.hidden = !splitting;
+    this.el.splitLine.style.left = `${split * 100}%`;
+    this.el.beforeToggle.disabled = before.size === 0;
+    this.el.split.disabled = before.size === 0;
+  }
+
+  private updateButtons(): void {
+    const has = this.states.length > 0;
+    const preset = this.panel.preset();
+    this.el.run.disabled = this.busy || !has || !this.panel.isAvailable(preset);
+    this.el.addNoise.disabled = this.busy || !has;
+    this.el.cancel.disabled = !this.busy;
+    this.el.revert.disabled = this.busy || !this.states.some((s) => s.before !== null);
+    this.el.export.disabled = this.busy || !has;
+    document.body.dataset.busy = String(this.busy);
+  }
+
+  /** Re-evaluates the Run button after the preset or the worker's op list changed. */
+  refresh(): void {
+    this.updateButtons();
+  }
+
+  private showMetrics(report: RunReport | null): void {
+    const rows: Array<[string, string]> = [];
+    if (!report) rows.push(['No run yet', '']);
+    else {
+      rows.push(['Filter', report.preset]);
+      rows.push(['Time', `${(report.wallMs / 1000).toFixed(2)} s (${(report.computeMs / 1000).toFixed(2)} s computing)`]);
+      rows.push(['Vertices', `${count.format(report.vertices)}${report.meshes > 1 ? ` in ${report.meshes} meshes` : ''}`]);
+      if (report.iterations !== null) rows.push(['Iterations', count.format(report.iterations)]);
+      if (report.error) {
+        const pct = (v: number) => `${((100 * v) / Math.max(report.error!.diagonal, 1e-30)).toFixed(3)}%`;
+        rows.push(['Error vs. before noise', `${report.error.rms.toPrecision(3)} RMS (${pct(report.error.rms)} of the size)`]);
+        rows.push(['Noisy input had', `${report.error.inputRms.toPrecision(3)} RMS (${pct(report.error.inputRms)})`]);
+      }
+    }
+    this.el.metrics.replaceChildren(
+      ...rows.flatMap(([k, v]) => {
+        const dt = document.createElement('dt');
+        dt.textContent = k;
+        const dd = document.createElement('dd');
+        dd.textContent = v;
+        return [dt, dd];
+      }),
+    );
+  }
+}

@@ -1,0 +1,47 @@
+// The color legend of scalar-field mode: the field's name, the color ramp and its value range.
+
+import { cssGradient, type ScalarRange } from './colormap';
+
+const LABELS: Record<string, string> = {
+  _curvature: 'Curvature',
+  _geodesic: 'Geodesic distance',
+  _segment: 'Segments',
+};
+
+export function scalarLabel(name: string): string {
+  return LABELS[name] ?? name.replace(/^_/, '').replace(/_/g, ' ');
+}
+
+const format = (v: number) => (Math.abs(v) >= 1000 || (Math.abs(v) < 0.01 && v !== 0) ? v.toExponential(2) : v.toPrecision(3));
+
+export class Legend {
+  constructor(private readonly element: HTMLElement) {
+    element.hidden = true;
+  }
+
+  show(name: string, range: ScalarRange): void {
+    this.element.hidden = false;
+    this.element.replaceChildren();
+    const title = document.createElement('div');
+    title.className = 'legend-title';
+    title.textContent = range.kind === 'categorical' ? `${scalarLabel(name)} (${range.max + 1} labels)` : scalarLabel(name);
+    const ramp = document.createElement('div');
+    ramp.className = 'legend-ramp';
+    ramp.style.background = cssGradient(range);
+    const ends = document.createElement('div');
+    ends.className = 'legend-ends';
+    const low = document.createElement('span');
+    const high = document.createElement('span');
+    if (range.kind !== 'categorical') {
+      low.textContent = format(range.min);
+      high.textContent = format(range.max);
+    }
+    ends.append(low, high);
+    this.element.append(title, ramp, ends);
+    this.element.dataset.scalar = name;
+  }
+
+  hide(): void {
+    this.element.hidden = true;
+  }
+}

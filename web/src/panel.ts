@@ -1,0 +1,127 @@
+// The side panel's parameter part: the preset select and a lil-gui folder with every parameter of
+// the chosen preset, each with its unit and a plain-words tooltip. Values are kept per preset, so
+// switching back and forth keeps what the user typed.
+
+import GUI from 'lil-gui';
+import { PRESETS, paramsOf, presetById, type Param, type Preset } from './presets';
+import { HEIGHT } from './runner';
+
+export class ParameterPanel {
+  private gui: GUI | null = null;
+  private readonly values = new Map<string, Record<string, unknown>>();
+  private available: Set<string> | null = null;
+  /** Extra choices for presets that read a named scalar (Terrain): the mesh's scalar attributes. */
+  private scalarChoices: string[] = [];
+
+  constructor(
+    private readonly select: HTMLSelectElement,
+    private readonly summary: HTMLElement,
+    private readonly container: HTMLElement,
+    private readonly onChange: () => void = () => undefined,
+  ) {
+    for (const preset of PRESETS) {
+      const option = document.createElement('option');
+      option.value = preset.id;
+      option.textContent = preset.name;
+      option.title = preset.summary;
+      select.append(option);
+    }
+    select.addEventListener('change', () => {
+      this.build();
+      this.onChange();
+    });
+    this.build();
+  }
+
+  preset(): Preset {
+    return presetById(this.select.value) ?? PRESETS[0]!;
+  }
+
+  /** The parameter object for the op, with the user's values. */
+  params(): Record<string, unknown> {
+    const preset = this.preset();
+    const values = this.valuesOf(preset);
+    const params = paramsOf(preset, values);
+    if (preset.needsScalar) params.signal = values.signal;
+    return params;
+  }
+
+  /** Marks presets whose op this build of the module lacks; selects the first usable one if needed. */
+  setAvailableOps(ops: string[]): void {
+    this.available = new Set(ops);
+    for (const option of this.select.options) {
+      const preset = presetById(option.value);
+      const ok = !preset || this.available.has(preset.op);
+      option.disabled = !ok;
+      option.textContent = `${preset?.name ?? option.value}${ok ? '' : ' (not in this build yet)'}`;
+    }
+    if (this.select.selectedOptions[0]?.disabled) {
+      const first = [...this.select.options].find((o) => !o.disabled);
+      if (first) this.select.value = first.value;
+    }
+    this.build();
+  }
+
+  isAvailable(preset: Preset): boolean {
+    return !this.available || this.available.has(preset.op);
+  }
+
+  setScalarChoices(names: string[]): void {
+    this.scalarChoices = names;
+    if (this.preset().needsScalar) this.build();
+  }
+
+  /** Sets one parameter of the current preset (Alt+click picks the geodesic source). */
+  set(key: string, value: unknown): void {
+    this.valuesOf(this.preset())[key] = value;
+    this.gui?.controllersRecursive().forEach((c) => c.updateDisplay());
+  }
+
+  /** File attributes first (a terrain file's own is what its user came for), then the height. */
+  private signalChoices(): string[] {
+    return [...new Set([...this.scalarChoices.filter((n) => !n.startsWith('_curvature') && n !== '_geodesic'), HEIGHT])];
+  }
+
+  private valuesOf(preset: Preset): Record<string, unknown> {
+    let values = this.values.get(preset.id);
+    if (!values) {
+      values = Object.fromEntries(preset.params.map((p) => [p.key, p.value]));
+      this.values.set(preset.id, values);
+    }
+    if (preset.needsScalar && !this.signalChoices().includes(values.signal as string)) values.signal = this.signalChoices()[0];
+    return values;
+  }
+
+  private build(): void {
+    this.gui?.destroy();
+    const preset = this.preset();
+    this.summary.textContent = this.isAvailable(preset)
+      ? preset.summary
+      : `${preset.summary} This build of the WebAssembly module does not include the "${preset.op}" operation yet.`;
+    const values = this.valuesOf(preset);
+    const gui = new GUI({ container: this.container, title: `${preset.name} parameters`, width: 300 });
+    if (preset.needsScalar) {
+      const c = gui.add(values, 'signal', this.signalChoices()).name('Attribute to filter');
+      c.domElement.title = `The per-vertex value to smooth: one from the file, or ${HEIGHT}, the height of each vertex along the mesh's thinnest axis.`;
+    }
+    for (const param of preset.params) addController(gui, values, param);
+    this.gui = gui;
+  }
+}
+
+function addController(gui: GUI, values: Record<string, unknown>, param: Param): void {
+  let controller;
+  switch (param.kind) {
+    case 'number':
+      controller = gui.add(values, param.key, param.min, param.max, param.step).name(param.unit ? `${param.label} (${param.unit})` : param.label);
+      break;
+    case 'choice':
+      controller = gui.add(values, param.key, param.options).name(param.label);
+      break;
+    case 'flag':
+      controller = gui.add(values, param.key).name(param.label);
+      break;
+  }
+  controller.domElement.title = param.tooltip;
+  controller.domElement.dataset.param = param.key;
+}

@@ -1,0 +1,169 @@
+// The presets of the side panel: which op each runs and every parameter it sends, with the unit
+// and a plain-words explanation shown as a tooltip. Values follow ALGORITHMS.md §0.4 (the paper's
+// settings). Spatial parameters are multiples of the mesh's average edge length (AEL).
+
+export interface NumberParam {
+  key: string;
+  kind: 'number';
+  label: string;
+  unit: string;
+  value: number;
+  min: number;
+  max: number;
+  step: number;
+  tooltip: string;
+}
+
+export interface ChoiceParam {
+  key: string;
+  kind: 'choice';
+  label: string;
+  value: string;
+  /** Shown label -> value sent. */
+  options: Record<string, string>;
+  tooltip: string;
+}
+
+export interface FlagParam {
+  key: string;
+  kind: 'flag';
+  label: string;
+  value: boolean;
+  tooltip: string;
+}
+
+export type Param = NumberParam | ChoiceParam | FlagParam;
+
+export interface Preset {
+  id: string;
+  name: string;
+  /** Op of the wasm module (ops_NAME.cpp). */
+  op: string;
+  /** One sentence shown under the preset select. */
+  summary: string;
+  params: Param[];
+  /** Sent unchanged, not shown (e.g. the method of the denoise op). */
+  fixed?: Record<string, unknown>;
+  /** The output's colors replace the mesh's vertex colors (a color filter). */
+  replacesColors?: boolean;
+  /** The scalar the result is best looked at in (view mode "scalar field"). */
+  showsScalar?: string;
+  /** The scalar signal the op reads, chosen from the mesh's scalar attributes (Terrain). */
+  needsScalar?: boolean;
+}
+
+const AEL = '× AEL';
+
+const num = (key: string, label: string, unit: string, value: number, min: number, max: number, step: number, tooltip: string): NumberParam => ({
+  key, kind: 'number', label, unit, value, min, max, step, tooltip,
+});
+
+// Parameters shared by the mean shift presets, in the words of a user first and the paper second.
+const radius = (v: number) => num('radius', 'Neighbourhood radius r', AEL, v, 0.5, 30, 0.5, 'How far around each point the filter looks. Larger is smoother and slower.');
+const hs = (v: number) => num('hs', 'Spatial bandwidth h_s', AEL, v, 0.25, 20, 0.25, 'How quickly the influence of a neighbour fades with its distance along the surface.');
+const kmax = (v: number) => num('kmax', 'Max iterations k_max', '', v, 1, 500, 1, 'Upper limit on mean shift steps per point; points usually settle sooner.');
+const eps = (v: number) => num('eps', 'Convergence ε', AEL, v, 0.01, 2, 0.01, 'A point stops moving once a step is shorter than this.');
+const passes = (v: number) => num('passes', 'Passes', '', v, 1, 50, 1, 'How many times the filter is applied in a row (blurring mean shift uses several).');
+const mode = (v: 'ms' | 'bms'): ChoiceParam => ({
+  key: 'mode', kind: 'choice', label: 'Algorithm', value: v,
+  options: { 'Mean shift (MS)': 'ms', 'Blurring mean shift (BMS)': 'bms' },
+  tooltip: 'Mean shift keeps the input fixed while points climb to the nearest mode; blurring mean shift updates the signal after every pass (smoother, faster to flatten).',
+});
+const levels = (v: number) => num('levels', 'Wavelet levels L', '', v, 0, 12, 1, 'Filter a coarser version of the mesh L times simplified, then add the detail back. Faster on big meshes.');
+const alpha = (v: number) => num('alpha', 'Detail gain α', '', v, 0, 2, 0.05, 'How much of the removed fine detail is added back (0 = none, 1 = all of it).');
+
+export const PRESETS: Preset[] = [
+  {
+    id: 'denoise', name: 'Denoise', op: 'denoise',
+    summary: 'Removes scanner noise from the surface while keeping sharp edges and corners.',
+    fixed: { method: 'meanshift' },
+    params: [
+      radius(4), hs(3),
+      num('hr', 'Feature preservation h_r', 'radians', 0.45, 0.05, 3.14, 0.01, 'How different two normals may be and still be averaged. Smaller keeps more edges sharp.'),
+      kmax(50), eps(0.2), passes(3),
+      num('vertexIterations', 'Vertex update steps', '', 20, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.'),
+    ],
+  },
+  {
+    id: 'smooth-colors', name: 'Smooth colors', op: 'filter', replacesColors: true,
+    summary: 'Evens out blotchy vertex colors while keeping borders between differently colored regions.',
+    fixed: { signal: 'color' },
+    params: [
+      mode('ms'), hs(3),
+      num('hr', 'Color tolerance h_r', 'linear RGB', 0.1, 0.01, 1, 0.01, 'How different two colors may be and still be blended. Smaller keeps more borders.'),
+      radius(9), kmax(50), eps(0.2),
+    ],
+  },
+  {
+    id: 'filter-curvature', name: 'Filter curvature', op: 'filter', showsScalar: '_curvature',
+    summary: 'Smooths the absolute curvature of the surface, e.g. to find ridges and valleys robustly.',
+    fixed: { signal: 'curvature' },
+    params: [
+      mode('ms'), hs(3),
+      num('hr', 'Curvature tolerance h_r', '1 / length', 0.25, 0.01, 10, 0.01, 'How different two curvature values may be and still be averaged.'),
+      radius(9), kmax(50), eps(0.2), levels(2), alpha(0),
+    ],
+  },
+  {
+    id: 'terrain', name: 'Terrain', op: 'filter', needsScalar: true, showsScalar: '_filtered',
+    summary: 'Smooths a per-vertex attribute of a terrain (height, vegetation height, class) along the ground.',
+    params: [
+      mode('bms'), hs(5),
+      num('hr', 'Value tolerance h_r', 'attribute units', 5, 0.01, 1000, 0.01, 'How different two attribute values may be and still be averaged.'),
+      radius(12), kmax(5), eps(0.2), passes(10), levels(6), alpha(1),
+    ],
+  },
+  {
+    id: 'taubin', name: 'Smooth shape (Taubin)', op: 'smooth',
+    summary: 'Classic Taubin λ|μ smoothing of the positions: fast, but rounds off sharp edges too.',
+    params: [
+      num('iterations', 'Iterations', '', 10, 0, 100000, 1, 'Number of shrink-and-inflate step pairs. More is smoother.'),
+      num('lambda', 'Shrink step λ', '', 0.5, 0.01, 1, 0.01, 'Size of the smoothing step.'),
+      num('mu', 'Inflate step μ', '', -0.53, -1, -0.01, 0.01, 'Size of the step that undoes shrinking; must be below −λ.'),
+      {
+        key: 'weights', kind: 'choice', label: 'Neighbour weights', value: 'uniform',
+        options: { Uniform: 'uniform', 'Inverse edge length': 'fujiwara', Cotangent: 'cotangent' },
+        tooltip: 'How neighbours are weighted: all alike, closer ones more, or by the surface geometry.',
+      },
+    ],
+  },
+  {
+    id: 'curvature', name: 'Curvature', op: 'curvature', showsScalar: '_curvature',
+    summary: 'Computes the discrete curvature of the surface and shows it as a color map.',
+    params: [{
+      key: 'kind', kind: 'choice', label: 'Kind', value: 'abs',
+      options: { 'Absolute |k1|+|k2|': 'abs', 'Mean H': 'mean', 'Gaussian K': 'gauss', RMS: 'rms' },
+      tooltip: 'Which curvature to compute: absolute is large on any bend, mean has a sign (bulge or dent), Gaussian tells domes from saddles.',
+    }],
+  },
+  {
+    id: 'geodesic', name: 'Geodesic distance', op: 'geodesic', showsScalar: '_geodesic',
+    summary: 'Distance along the surface from one vertex (Alt+click the mesh to pick it).',
+    params: [
+      num('source', 'From vertex', 'index', 0, 0, 1e9, 1, 'The vertex distances are measured from; Alt+click on the mesh to pick one.'),
+      num('radius', 'Up to', AEL, 1000, 1, 1e6, 1, 'Vertices farther than this are left out (shown grey).'),
+    ],
+  },
+];
+
+/** "Add noise" runs this op; the amount is editable next to the button. */
+export const NOISE: Preset = {
+  id: 'noise', name: 'Add noise', op: 'noise',
+  summary: 'Displaces every vertex randomly, to try the denoising filters on.',
+  params: [
+    num('amount', 'Noise amount', AEL, 0.5, 0, 5, 0.05, 'How far each vertex is moved, in average edge lengths.'),
+    num('seed', 'Seed', '', 1, 0, 1e9, 1, 'The same seed gives the same noise.'),
+  ],
+  fixed: { distribution: 'fixed', direction: 'random' },
+};
+
+export function presetById(id: string): Preset | undefined {
+  return PRESETS.find((p) => p.id === id);
+}
+
+/** The parameter object sent to the op. */
+export function paramsOf(preset: Preset, values: Record<string, unknown>): Record<string, unknown> {
+  const params: Record<string, unknown> = { ...preset.fixed };
+  for (const p of preset.params) params[p.key] = values[p.key] ?? p.value;
+  return params;
+}

@@ -1,0 +1,139 @@
+// Runs an op on every mesh of the open file, one after another, through the worker. Results are
+// applied only when every mesh succeeded, so a failure or a cancel leaves the model as it was.
+
+import { applyOutput, meshArrays, rmsError, snapshot, type MeshState } from './model';
+import type { Preset } from './presets';
+import type { RunOutput } from './worker/protocol';
+import { GeoshiftError, type WorkerClient } from './worker/client';
+
+export interface RunReport {
+  op: string;
+  preset: string;
+  /** Wall time on the page, load and copies included (ms). */
+  wallMs: number;
+  /** Time inside the module, summed over meshes (ms). */
+  computeMs: number;
+  vertices: number;
+  meshes: number;
+  /** Iterations or passes the op reports, when it does. */
+  iterations: number | null;
+  /** Per-vertex RMS distance to the positions before noise was added, and that of the input. */
+  error: { rms: number; inputRms: number; diagonal: number } | null;
+  scalars: string[];
+  stats: RunOutput['stats'][];
+}
+
+export interface ProgressEvent {
+  /** Overall, over all meshes. */
+  fraction: number;
+  stage: string;
+  stageFraction: number;
+  /** performance.now() when the page received it. */
+  at: number;
+}
+
+/** The signal a terrain filter falls back to when the file has no attribute of its own. */
+export const HEIGHT = '_height';
+
+/** Each vertex's coordinate along the axis in which the mesh is thinnest (a terrain's "up"). */
+export function heightOf(positions: Float32Array): Float32Array {
+  const min = [Infinity, Infinity, Infinity];
+  const max = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < positions.length; i++) {
+    min[i % 3] = Math.min(min[i % 3]!, positions[i]!);
+    max[i % 3] = Math.max(max[i % 3]!, positions[i]!);
+  }
+  const extent = [0, 1, 2].map((k) => max[k]! - min[k]!);
+  const up = extent.indexOf(Math.min(...extent));
+  return Float32Array.from({ length: positions.length / 3 }, (_, v) => positions[3 * v + up]!);
+}
+
+function iterationsOf(stats: RunOutput['stats'][]): number | null {
+  for (const key of ['iterations', 'meanIterations', 'passes']) {
+    const values = stats.map((s) => s[key]).filter((v): v is number => typeof v === 'number');
+    if (values.length) return Math.max(...values);
+  }
+  return null;
+}
+
+export async function runOnMeshes(
+  client: WorkerClient,
+  states: MeshState[],
+  preset: Preset,
+  params: Record<string, unknown>,
+  onProgress: (event: ProgressEvent) => void,
+  /** Checked between the steps: a cancel may come while a mesh is still being sent. */
+  cancelled: () => boolean = () => false,
+): Promise<RunReport> {
+  const started = performance.now();
+  const outputs: RunOutput[] = [];
+  const inputs: Float32Array[] = [];
+  for (const [i, state] of states.entries()) {
+    const prefix = states.length > 1 ? `mesh ${i + 1}/${states.length}: ` : '';
+    onProgress({ fraction: i / states.length, stage: `${prefix}sending the mesh`, stageFraction: 0, at: performance.now() });
+    const stopIfCancelled = () => {
+      if (cancelled()) throw new GeoshiftError('cancelled', 'cancelled');
+    };
+    stopIfCancelled();
+    const arrays = meshArrays(state.mesh.geometry);
+    if (params.signal === HEIGHT && !arrays.scalars[HEIGHT]) arrays.scalars[HEIGHT] = heightOf(arrays.positions);
+    inputs.push(arrays.positions);
+    await client.load(state.id, arrays);
+    stopIfCancelled();
+    outputs.push(
+      await client.run(state.id, preset.op, params, (fraction, stage) =>
+        onProgress({ fraction: (i + fraction) / states.length, stage: `${prefix}${stage}`, stageFraction: fraction, at: performance.now() }),
+      ),
+    );
+  }
+  // Every mesh succeeded: apply all at once.
+  let errorSum = 0;
+  let inputErrorSum = 0;
+  let errorCount = 0;
+  let diagonal = 0;
+  for (const [i, state] of states.entries()) {
+    const output = outputs[i]!;
+    snapshot(state);
+    if (preset.op === 'noise' && output.positions && !state.preNoise) state.preNoise = inputs[i]!;
+    applyOutput(state, output, preset.replacesColors === true);
+    if (preset.op !== 'noise' && state.preNoise && output.positions && state.preNoise.length === output.positions.length) {
+      const after = rmsError(output.positions, state.preNoise);
+      const before = rmsError(inputs[i]!, state.preNoise);
+      const n = output.positions.length / 3;
+      errorSum += after.rms ** 2 * n;
+      inputErrorSum += before.rms ** 2 * n;
+      errorCount += n;
+      diagonal = Math.max(diagonal, after.diagonal);
+    }
+  }
+  const stats = outputs.map((o) => o.stats);
+  return {
+    op: preset.op,
+    preset: preset.name,
+    wallMs: performance.now() - started,
+    computeMs: stats.reduce((t, s) => t + s.timeMs, 0),
+    vertices: stats.reduce((t, s) => t + s.vertices, 0),
+    meshes: states.length,
+    iterations: iterationsOf(stats),
+    error: errorCount ? { rms: Math.sqrt(errorSum / errorCount), inputRms: Math.sqrt(inputErrorSum / errorCount), diagonal } : null,
+    scalars: [...new Set(outputs.flatMap((o) => Object.keys(o.scalars).map((n) => n.toLowerCase())))],
+    stats,
+  };
+}
+
+/** Plain words for a failed run. */
+export function describeRunFailure(error: unknown): string {
+  if (error instanceof GeoshiftError) {
+    switch (error.kind) {
+      case 'cancelled':
+        return 'Cancelled; the mesh is unchanged.';
+      case 'memory':
+        return 'Out of memory: the mesh is too large for the browser. Try a smaller mesh, or the command-line tool.';
+      case 'input':
+        return `The filter could not run: ${error.message}. The mesh is unchanged.`;
+      case 'internal':
+        return `Something went wrong inside the filter (${error.message}). The mesh is unchanged; reloading the page may help.`;
+    }
+  }
+  return `Something went wrong (${error instanceof Error ? error.message : String(error)}). The mesh is unchanged.`;
+}
