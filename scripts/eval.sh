@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The denoising evaluation table (issue 5): builds the native release preset if needed and runs
+# eval/denoise_eval, which prints Markdown tables (RMS ×10², mean normal error, time per method).
+#   scripts/eval.sh [--mesh SUBSTRING] [--quick] [--markdown FILE] [--data DIR]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [ ! -f build/native-release/CMakeCache.txt ]; then
+  cmake --preset native-release >/dev/null
+fi
+cmake --build build/native-release -j"$(nproc)" --target denoise_eval >/dev/null
+echo "machine: $(nproc) cores, $(uname -m), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')" >&2
+exec build/native-release/eval/denoise_eval "$@"
