@@ -13,7 +13,9 @@ int main(int argc, char** argv) {
   using namespace geoshift::cli;
   const std::vector<Command> commands = {addInfo(app), addNoise(app), addSmooth(app),
                                          addCurvature(app), addCompare(app),  addGeodesic(app),
-                                         addLogMap(app),    addExpMap(app),     addDenoise(app)};
+                                         addLogMap(app),    addExpMap(app),     addFilter(app),
+                                         addDenoise(app),
+                                         addTerrain(app)};
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,116 @@
+// geoshift filter: Riemannian mean shift / blurring mean shift of a vertex signal of every part.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "filter_signal.hpp"
+#include "geoshift/error.hpp"
+#include "geoshift/presets.hpp"
+
+namespace geoshift::cli {
+
+namespace {
+
+struct FilterArgs {
+  std::string in, out, signal, mode, preset, rangeUpdate;
+  std::optional<double> hs, hr, radius, eps;
+  std::optional<int> kmax, passes;
+  int threads = 0;
+  bool segments = false, exactCharts = false;
+};
+
+// The preset (if any), then every option given on the command line over it.
+FilterSettings settingsOf(const FilterArgs& a) {
+  FilterSettings s;
+  if (!a.preset.empty()) {
+    const FilterPreset& p = filterPreset(a.preset);
+    s.options = p.options;
+    s.signal = p.signal;
+    s.rangeGiven = true;
+    s.levels = p.levels;
+    s.detailGain = p.detailGain;
+  }
+  if (!a.signal.empty()) s.signal = a.signal;
+  if (s.signal.empty()) s.signal = "color";
+  MeanShiftOptions& o = s.options;
+  if (a.mode == "ms") o.passes = 1;
+  if (a.mode == "bms" && !a.passes && o.passes == 1) o.passes = 10;
+  if (a.passes) o.passes = *a.passes;
+  if (a.mode == "ms" && o.passes != 1) throw InputError("--mode ms runs one pass; use --mode bms for --passes > 1");
+  if (a.hs) o.spatialBandwidth = *a.hs;
+  if (a.hr) {
+    o.rangeBandwidth = *a.hr;
+    s.rangeGiven = true;
+  }
+  if (a.radius) o.radius = *a.radius;
+  if (a.eps) o.epsilon = *a.eps;
+  if (a.kmax) o.maxIterations = *a.kmax;
+  if (a.rangeUpdate == "sampled") o.rangeUpdate = RangeUpdate::Sampled;
+  if (a.rangeUpdate == "joint") o.rangeUpdate = RangeUpdate::Joint;
+  o.exactCharts = a.exactCharts;
+  o.segments = a.segments;
+  o.parallel.threads = a.threads;
+  return s;
+}
+
+}  // namespace
+
+Command addFilter(CLI::App& app) {
+  auto a = std::make_shared<FilterArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "filter", "Riemannian mean shift (--mode ms) or blurring mean shift (--mode bms) of a vertex signal");
+  sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off .ply .stl)")->required();
+  sub->add_option("-o,--output", a->out, "output mesh; format from its extension")->required();
+  sub->add_option("--signal", a->signal,
+                  "color (COLOR_0), normal (vertex normals), curvature (absolute), terrain (height above ground "
+                  "and class), or the name of a float attribute such as _HEIGHT; several names separated by commas "
+                  "are filtered together (default: color, or the preset's)");
+  sub->add_option("--preset", a->preset, "color, curvature-ms, curvature-bms, terrain-ms, terrain-bms (paper §4.2)");
+  sub->add_option("--mode", a->mode, "ms = one pass (mean shift), bms = blurring passes (default 10)")
+      ->check(CLI::IsMember({"ms", "bms"}));
+  sub->add_option("--passes", a->passes, "number of passes (bms)");
+  sub->add_option("--hs", a->hs, "spatial bandwidth h_s in multiples of the average edge length (default 3)");
+  sub->add_option("--hr", a->hr,
+                  "range bandwidth h_r in the signal's units (default: color 0.1, normal 0.45, otherwise a tenth "
+                  "of the signal's 10-90% spread)");
+  sub->add_option("--radius", a->radius, "truncation radius r in AEL (default 3 h_s)");
+  sub->add_option("--kmax", a->kmax, "most iterations per pass (default 50)");
+  sub->add_option("--eps", a->eps, "stop when a step is shorter than this, in AEL (default 0.2)");
+  sub->add_option("--range-update", a->rangeUpdate,
+                  "joint (default): the range value moves with its own mean shift step; sampled (the paper): it "
+                  "is read from the signal at the iterate")
+      ->check(CLI::IsMember({"sampled", "joint"}));
+  sub->add_option("--threads", a->threads, "worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  sub->add_flag("--segments", a->segments, "also label vertices by their modes: attribute _SEGMENT");
+  sub->add_flag("--exact-charts", a->exactCharts, "a fresh log map at every iteration (slower reference)");
+  return {sub, [a] {
+            const FilterSettings settings = settingsOf(*a);
+            Document doc = load(a->in);
+            FilterSummary total;
+            // Parts without the signal (a label mesh beside a colored one) are left as they are,
+            // as long as one part has it.
+            std::vector<std::string> skipped;
+            for (const MeshPart& part : doc.parts)
+              if (std::string why = missingSignal(doc, part, settings); !why.empty()) skipped.push_back(why);
+            if (skipped.size() == doc.parts.size()) throw InputError(skipped.front() + "; choose another --signal");
+            for (const std::string& why : skipped) std::cerr << "geoshift: skipped: " << why << "\n";
+            for (MeshPart& part : doc.parts) {
+              if (!missingSignal(doc, part, settings).empty()) continue;
+              const MeshBuild b = buildPart(doc, part);
+              total.add(filterPart(doc, part, b, settings), b.mesh.vertexCount());
+            }
+            save(doc, a->out);
+            std::printf("filter: %d vertices, iterations mean %.2f max %d, converged %.1f%%, %.3f s, %d threads\n",
+                        total.vertices, total.meanIterations(), total.maxIterations, 100 * total.convergedFraction(),
+                        total.seconds, total.threads);
+          }};
+}
+
+}  // namespace geoshift::cli

@@ -1,0 +1,25 @@
+#pragma once
+// The paper's parameter sets (ALGORITHMS.md §0.4) and ours, by name, for the CLI and the web app.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "geoshift/mean_shift.hpp"
+
+namespace geoshift {
+
+struct FilterPreset {
+  std::string name;
+  std::string description;
+  std::string signal;       // what it filters: color, normal, curvature, terrain
+  MeanShiftOptions options; // bandwidths in AEL (spatial) and signal units (range)
+  int levels = 0;           // wavelet levels of the hybrid filter (0: filter the mesh directly)
+  double detailGain = 1;    // α for every level of the hybrid filter
+};
+
+// color, curvature-ms, curvature-bms, terrain-ms, terrain-bms.
+const std::vector<FilterPreset>& filterPresets();
+// Throws InputError listing the known names.
+const FilterPreset& filterPreset(std::string_view name);
+
+}  // namespace geoshift
