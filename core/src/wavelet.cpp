@@ -3,6 +3,8 @@
 // then the integral update A'_e = A_e + Σ_o p_oe A_o and the signal update f_e += Σ_o u_eo d_o with
 // LOCAAT's minimum-norm u_eo = A_o A'_e / Σ_e' A'_e'^2, which keeps Σ_v A_v f_v exactly invariant.
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -82,6 +84,31 @@ double turnCosine(int v, const Ring& r, const PositionRows& x) {
   return d > 0 ? in.dot(out) / d : -1.0;
 }
 
+// Ascending cost in kCostBands quantile bands, each band in vertex order. A strict sort would visit
+// the mesh in random order (ties and noise in the cost), which on large meshes makes every step a
+// cache miss; bands keep the cost ordering where it matters (cheap first) at streaming speed.
+constexpr int kCostBands = 16;
+
+std::vector<int> bandedOrder(const std::vector<int>& vertices, const std::vector<double>& cost) {
+  const size_t n = vertices.size();
+  std::vector<double> sample;
+  const size_t step = std::max<size_t>(1, n / 4096);
+  for (size_t i = 0; i < n; i += step) sample.push_back(cost[i]);
+  std::sort(sample.begin(), sample.end());
+  std::vector<double> bounds;  // upper bounds of bands 0 .. kCostBands-2
+  for (int b = 1; b < kCostBands && !sample.empty(); ++b) bounds.push_back(sample[sample.size() * b / kCostBands]);
+  std::vector<unsigned char> band(n);
+  std::vector<size_t> start(kCostBands + 1, 0);
+  for (size_t i = 0; i < n; ++i) {
+    band[i] = static_cast<unsigned char>(std::upper_bound(bounds.begin(), bounds.end(), cost[i]) - bounds.begin());
+    ++start[band[i] + 1];
+  }
+  for (int b = 0; b < kCostBands; ++b) start[b + 1] += start[b];
+  std::vector<int> order(n);
+  for (size_t i = 0; i < n; ++i) order[start[band[i]]++] = vertices[i];
+  return order;
+}
+
 struct Analyzer {
   const Mesh& mesh;
   const WaveletOptions& opt;
@@ -101,8 +128,22 @@ struct Analyzer {
   PositionRows positions() const { return {F.data(), C}; }
   double* row(int v) { return F.data() + static_cast<size_t>(v) * C; }
 
+  // Per level scratch.
+  std::vector<char> faceMark, hot;
+  std::vector<int> hotList;
+  std::vector<Vec3> ref;
+  std::vector<int> touched;
+  std::vector<double> savedRows, savedA;
+  std::vector<char> excluded;
+
   // One level; false when it removes nothing.
   bool level(int index, WaveletLevel& L, std::vector<int>* parentFace);
+  // Predict, integral update, signal update of the selected odd vertices; false when the update of
+  // the positions would flip a face and no local restriction of u avoids it.
+  bool lift(WaveletLevel& L);
+  void applyUpdate(const WaveletLevel& L, int i, double sign);
+  void computeUpdate(WaveletLevel& L, int i) const;
+  std::vector<int> flippedFaces() const;
   void select(const std::vector<int>& order, WaveletLevel& L, std::vector<char>& faceMark, std::vector<Vec3>& ref);
 };
 
@@ -152,123 +193,167 @@ bool Analyzer::level(int index, WaveletLevel& L, std::vector<int>* parentFace) {
   L.vertexCount = static_cast<int>(live.size());
   // Candidates in ascending cost; boundary vertices only where the polyline is nearly straight.
   const double cosBoundary = opt.boundaryAngle < 0 ? 2.0 : std::cos(opt.boundaryAngle * kDegree);
-  std::vector<std::pair<double, int>> cost;
+  std::vector<int> candidates;
+  std::vector<double> cost;
+  candidates.reserve(live.size());
   cost.reserve(live.size());
+  const bool residual = opt.cost == WaveletCost::Residual;
   for (int v : live) {
     if (cm.isolated(v)) continue;
-    cm.ring(v, ring);
-    if (ring.boundary && turnCosine(v, ring, x) < cosBoundary) continue;
+    const bool boundary = cm.boundaryVertex(v);
+    if (boundary && opt.boundaryAngle < 0) continue;
+    if (boundary || residual) cm.ring(v, ring);
+    if (boundary && turnCosine(v, ring, x) < cosBoundary) continue;
     double c = A[v];
-    if (opt.cost == WaveletCost::Residual) {
+    if (residual) {
       predictionWeights(v, ring, x, opt.weights, nbr, w);
       Vec3 p = Vec3::Zero();
       for (size_t i = 0; i < nbr.size(); ++i) p += w[i] * x(nbr[i]);
       c = (x(v) - p).squaredNorm();
     }
-    cost.emplace_back(c, v);
+    candidates.push_back(v);
+    cost.push_back(c);
   }
-  std::sort(cost.begin(), cost.end());
-  std::vector<int> order(cost.size());
-  for (size_t i = 0; i < cost.size(); ++i) order[i] = cost[i].second;
+  const std::vector<int> order = bandedOrder(candidates, cost);
+  candidates = {};
   cost = {};
 
   cm.beginLevel();
   for (int v : live) banned[v] = 0;
-  std::vector<char> faceMark;
-  std::vector<Vec3> ref;
-  std::vector<int> touched;
-  std::vector<double> savedRows, savedA;
   for (int attempt = 0;; ++attempt) {
     for (int v : live) status[v] = 0;
     faceMark.assign(cm.faceCount(), 0);
     ref.resize(cm.faceCount());
     select(order, L, faceMark, ref);
-    const int m = static_cast<int>(L.odd.size());
-    if (m == 0) return false;
-
-    // Every even neighbour moves in the update: remember its row and integral, and the normals of
-    // its faces before the move.
-    touched.clear();
-    for (int e : L.neighbor)
-      if (status[e] == 1) {
-        status[e] = 3;
-        touched.push_back(e);
-      }
-    savedRows.resize(touched.size() * C);
-    savedA.resize(touched.size());
-    for (size_t i = 0; i < touched.size(); ++i) {
-      std::copy_n(row(touched[i]), C, savedRows.begin() + i * C);
-      savedA[i] = A[touched[i]];
-      cm.ring(touched[i], ring);
-      for (int h : ring.outgoing)
-        if (!faceMark[h / 3]) {
-          const Face& f = cm.faces()[h / 3];
-          faceMark[h / 3] = 1;
-          ref[h / 3] = (x(f[1]) - x(f[0])).cross(x(f[2]) - x(f[0]));
-        }
-    }
-
-    // Predict from the pre-update evens (batch lifting), then the integral update.
-    L.detail.resize(static_cast<size_t>(m) * C);
-    for (int i = 0; i < m; ++i) {
-      double* d = L.detail.data() + static_cast<size_t>(i) * C;
-      std::copy_n(row(L.odd[i]), C, d);
-      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) {
-        const double* fe = row(L.neighbor[q]);
-        const double p = L.predict[q];
-        for (int c = 0; c < C; ++c) d[c] -= p * fe[c];
-      }
-    }
-    for (int i = 0; i < m; ++i)
-      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) A[L.neighbor[q]] += L.predict[q] * A[L.odd[i]];
-    L.update.resize(L.neighbor.size());
-    for (int i = 0; i < m; ++i) {
-      double s = 0;
-      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) s += A[L.neighbor[q]] * A[L.neighbor[q]];
-      const double Ao = A[L.odd[i]];
-      const double* d = L.detail.data() + static_cast<size_t>(i) * C;
-      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) {
-        const double u = s > 0 ? Ao * A[L.neighbor[q]] / s : 0.0;
-        L.update[q] = u;
-        double* fe = row(L.neighbor[q]);
-        for (int c = 0; c < C; ++c) fe[c] += u * d[c];
-      }
-    }
-
-    // The update moves even vertices: no face may flip or degenerate because of it.
-    std::vector<int> bad;
-    for (int f = 0; f < cm.faceCount(); ++f) {
-      if (!faceMark[f] || !cm.faceAlive(f)) continue;
-      const Face& t = cm.faces()[f];
-      const Vec3 a = x(t[0]), b = x(t[1]), c = x(t[2]);
-      const Vec3 n = (b - a).cross(c - a);
-      const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-      if (!(n.norm() > 1e-9 * longest) || !(n.dot(ref[f]) > 0)) bad.push_back(f);
-    }
-    for (int e : touched) status[e] = 1;
-    if (bad.empty()) break;
-
-    // Undo the level and keep the odd vertices next to the offending faces even this time.
+    if (L.odd.empty()) return false;
+    if (lift(L)) break;
+    // The update kept flipping faces: undo the level and keep the odd vertices next to them even.
     for (size_t i = 0; i < touched.size(); ++i) {
       std::copy_n(savedRows.begin() + i * C, C, row(touched[i]));
       A[touched[i]] = savedA[i];
     }
-    std::vector<char> near(mesh.vertexCount(), 0);
-    for (int f : bad)
-      for (int v : cm.faces()[f]) near[v] = 1;
-    for (int i = 0; i < m; ++i) {
-      bool hit = near[L.target[i]];
-      for (int q = L.offset[i]; q < L.offset[i + 1] && !hit; ++q) hit = near[L.neighbor[q]];
-      if (hit) banned[L.odd[i]] = 1;
-    }
+    for (size_t i = 0; i < L.odd.size(); ++i)
+      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q)
+        if (hot[L.neighbor[q]]) banned[L.odd[i]] = 1;
+    for (int v : hotList) hot[v] = 0;
+    hotList.clear();
     cm.rollback();
     if (attempt > 64) throw std::logic_error("wavelet: level " + std::to_string(index) + " keeps flipping faces");
   }
+  for (int v : hotList) hot[v] = 0;
+  hotList.clear();
 
   std::vector<int> parent = cm.compact(live);
   if (parentFace) *parentFace = std::move(parent);
   std::erase_if(live, [&](int v) { return status[v] == 2; });
   return true;
+}
+
+void Analyzer::applyUpdate(const WaveletLevel& L, int i, double sign) {
+  const double* d = L.detail.data() + static_cast<size_t>(i) * C;
+  for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) {
+    const double u = sign * L.update[q];
+    if (u == 0) continue;
+    double* fe = row(L.neighbor[q]);
+    for (int c = 0; c < C; ++c) fe[c] += u * d[c];
+  }
+}
+
+// LOCAAT's minimum-norm u_eo = A_o A'_e / Σ A'_e'^2 over the neighbours not excluded, so that
+// Σ_e A'_e u_eo = A_o (the invariant) holds for any non-empty support.
+void Analyzer::computeUpdate(WaveletLevel& L, int i) const {
+  double s = 0;
+  for (int q = L.offset[i]; q < L.offset[i + 1]; ++q)
+    if (!excluded[q]) s += A[L.neighbor[q]] * A[L.neighbor[q]];
+  const double Ao = A[L.odd[i]];
+  for (int q = L.offset[i]; q < L.offset[i + 1]; ++q)
+    L.update[q] = excluded[q] || !(s > 0) ? 0.0 : Ao * A[L.neighbor[q]] / s;
+}
+
+std::vector<int> Analyzer::flippedFaces() const {
+  const PositionRows x = positions();
+  std::vector<int> bad;
+  for (int f = 0; f < cm.faceCount(); ++f) {
+    if (!faceMark[f] || !cm.faceAlive(f)) continue;
+    const Face& t = cm.faces()[f];
+    const Vec3 a = x(t[0]), b = x(t[1]), c = x(t[2]);
+    const Vec3 n = (b - a).cross(c - a);
+    const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    if (!(n.norm() > 1e-9 * longest) || !(n.dot(ref[f]) > 0)) bad.push_back(f);
+  }
+  return bad;
+}
+
+bool Analyzer::lift(WaveletLevel& L) {
+  const PositionRows x = positions();
+  const int m = static_cast<int>(L.odd.size());
+  // Every even neighbour moves in the update: remember its row and integral, and the normals of its
+  // faces before the move (faces of collapsed fans already hold their normal from before the collapse).
+  touched.clear();
+  for (int e : L.neighbor)
+    if (status[e] == 1) {
+      status[e] = 3;
+      touched.push_back(e);
+    }
+  savedRows.resize(touched.size() * C);
+  savedA.resize(touched.size());
+  for (size_t i = 0; i < touched.size(); ++i) {
+    std::copy_n(row(touched[i]), C, savedRows.begin() + i * C);
+    savedA[i] = A[touched[i]];
+  }
+  for (int f = 0; f < cm.faceCount(); ++f) {
+    if (faceMark[f] || !cm.faceAlive(f)) continue;
+    const Face& t = cm.faces()[f];
+    if (status[t[0]] != 3 && status[t[1]] != 3 && status[t[2]] != 3) continue;
+    faceMark[f] = 1;
+    ref[f] = (x(t[1]) - x(t[0])).cross(x(t[2]) - x(t[0]));
+  }
+  for (int e : touched) status[e] = 1;
+
+  // Predict from the pre-update evens (batch lifting), then the integral update.
+  L.detail.resize(static_cast<size_t>(m) * C);
+  for (int i = 0; i < m; ++i) {
+    double* d = L.detail.data() + static_cast<size_t>(i) * C;
+    std::copy_n(row(L.odd[i]), C, d);
+    for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) {
+      const double* fe = row(L.neighbor[q]);
+      const double p = L.predict[q];
+      for (int c = 0; c < C; ++c) d[c] -= p * fe[c];
+    }
+  }
+  for (int i = 0; i < m; ++i)
+    for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) A[L.neighbor[q]] += L.predict[q] * A[L.odd[i]];
+  L.update.resize(L.neighbor.size());
+  excluded.assign(L.neighbor.size(), 0);
+  for (int i = 0; i < m; ++i) {
+    computeUpdate(L, i);
+    applyUpdate(L, i, 1.0);
+  }
+
+  // The update moves even vertices. Where that flips or flattens a face, the odd vertices updating
+  // its corners send their update to their other neighbours instead (u stays a valid choice).
+  for (int round = 0; round < 8; ++round) {
+    const std::vector<int> bad = flippedFaces();
+    if (bad.empty()) return true;
+    for (int f : bad)
+      for (int v : cm.faces()[f])
+        if (!hot[v]) hot[v] = 1, hotList.push_back(v);
+    for (int i = 0; i < m; ++i) {
+      bool hit = false;
+      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) hit |= !excluded[q] && hot[L.neighbor[q]];
+      if (!hit) continue;
+      applyUpdate(L, i, -1.0);
+      bool any = false;
+      for (int q = L.offset[i]; q < L.offset[i + 1]; ++q) {
+        excluded[q] |= hot[L.neighbor[q]];
+        any |= !excluded[q];
+      }
+      if (!any) return false;
+      computeUpdate(L, i);
+      applyUpdate(L, i, 1.0);
+    }
+  }
+  return flippedFaces().empty();
 }
 
 void requireFiniteSignals(const AttributeSet& signals, int n) {
@@ -345,6 +430,7 @@ Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const Wav
   for (int v = 0; v < n; ++v) an.live[v] = v;
   an.status.assign(n, 0);
   an.banned.assign(n, 0);
+  an.hot.assign(n, 0);
   if (options.keepLevelMeshes) mr.levelMeshes.push_back({mesh, an.live, {}});
 
   for (int l = 0; l < options.levels; ++l) {

@@ -87,16 +87,20 @@ void CollapseMesh::setHalfedge(int v, int h) {
   vh_[v] = h;
 }
 
-// Any live outgoing half-edge of v from the candidates, turned clockwise onto the boundary if v is on it.
-void CollapseMesh::repairHalfedge(int v, const std::vector<int>& candidates) {
+// After a collapse: keep v's half-edge if it survived (collapses keep every remaining vertex's
+// boundary status, and a boundary half-edge stays one), else take a live outgoing one from the
+// candidates, turned clockwise onto the boundary for a boundary vertex.
+void CollapseMesh::repairHalfedge(int v, bool boundary, const std::vector<int>& candidates) {
+  const int old = vh_[v];
+  if (old >= 0 && faceAlive(old / 3) && (!boundary || twin_[old] < 0)) return;
   int hint = -1;
   for (int h : candidates)
     if (h >= 0 && faceAlive(h / 3) && tail(h) == v) {
       hint = h;
       break;
     }
-  if (hint < 0) {
-    setHalfedge(v, -1);
+  if (hint < 0 || !boundary) {
+    setHalfedge(v, hint);
     return;
   }
   int h = hint;
@@ -119,10 +123,13 @@ void CollapseMesh::collapseTopology(int o, const Ring& r, int j) {
   if (before >= 0) dead[1] = r.outgoing[before] / 3;
 
   candidates_.clear();
-  std::vector<int> apexes;
-  apexes.reserve(2);
+  int apexes[2] = {-1, -1};
+  bool apexBoundary[2] = {false, false};
+  int outer[2][2] = {{-1, -1}, {-1, -1}};
+  const bool targetBoundary = twin_[vh_[t]] < 0;
   // Each dead face (o, t, w): its edges t-w and w-o merge into one, so their outer half-edges become twins.
-  for (int f : dead) {
+  for (int side = 0; side < 2; ++side) {
+    const int f = dead[side];
     if (f < 0) continue;
     int htw = -1, hwo = -1, w = -1;
     for (int c = 0; c < 3; ++c) {
@@ -135,7 +142,16 @@ void CollapseMesh::collapseTopology(int o, const Ring& r, int j) {
         hwo = h;
       }
     }
-    apexes.push_back(w);
+    apexes[side] = w;
+    outer[side][0] = htw;
+    outer[side][1] = hwo;
+  }
+  // Boundary status before any twin changes (a merged edge may turn a half-edge into a boundary one).
+  for (int side = 0; side < 2; ++side)
+    if (apexes[side] >= 0) apexBoundary[side] = twin_[vh_[apexes[side]]] < 0;
+  for (int side = 0; side < 2; ++side) {
+    if (dead[side] < 0) continue;
+    const int htw = outer[side][0], hwo = outer[side][1];
     const int outer1 = twin_[htw], outer2 = twin_[hwo];
     if (outer1 >= 0) twin_[outer1] = outer2;
     if (outer2 >= 0) twin_[outer2] = outer1;
@@ -153,14 +169,14 @@ void CollapseMesh::collapseTopology(int o, const Ring& r, int j) {
   for (int i = 0; i < k; ++i) {
     const int f = r.outgoing[i] / 3;
     if (f == dead[0] || f == dead[1]) continue;
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 3; ++c)
       if (faces_[f][c] == o) faces_[f][c] = t;
-      candidates_.push_back(3 * f + c);
-    }
+    candidates_.push_back(r.outgoing[i]);  // now leaves t
   }
   setHalfedge(o, -1);
-  repairHalfedge(t, candidates_);
-  for (int w : apexes) repairHalfedge(w, candidates_);
+  repairHalfedge(t, targetBoundary, candidates_);
+  for (int side = 0; side < 2; ++side)
+    if (apexes[side] >= 0) repairHalfedge(apexes[side], apexBoundary[side], candidates_);
 }
 
 void CollapseMesh::beginLevel() {

@@ -40,6 +40,7 @@ class CollapseMesh {
   const std::vector<Face>& faces() const { return faces_; }
   bool faceAlive(int f) const { return faces_[f][0] >= 0; }
   bool isolated(int v) const { return vh_[v] < 0; }
+  bool boundaryVertex(int v) const { return vh_[v] >= 0 && twin_[vh_[v]] < 0; }
 
   void ring(int v, Ring& r) const;
 
@@ -66,7 +67,7 @@ class CollapseMesh {
   static int next(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
   static int prev(int h) { return h % 3 == 0 ? h + 2 : h - 1; }
   void setHalfedge(int v, int h);
-  void repairHalfedge(int v, const std::vector<int>& candidates);
+  void repairHalfedge(int v, bool boundary, const std::vector<int>& candidates);
   void collapseTopology(int o, const Ring& r, int j);
 
   std::vector<Face> faces_;
