@@ -1,0 +1,64 @@
+// geoshift denoise, run as a user runs it.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include "geoshift/noise.hpp"
+#include "geoshift/shapes.hpp"
+#include "cli_support.hpp"
+
+using namespace geoshift;
+using namespace geoshift::test;
+
+namespace {
+
+double rmsToClean(const fs::path& result, const fs::path& clean) {
+  const Run r = geoshiftCli("compare --json " + q(result) + " " + q(clean));
+  REQUIRE(r.code == 0);
+  return nlohmann::json::parse(r.out)["resultToReference"]["rms"].get<double>();
+}
+
+}  // namespace
+
+TEST_CASE("cli: denoise removes noise with every method and says what it did", "[cli][denoise]") {
+  const fs::path dir = tempDir("cli-denoise");
+  const TriangleSoup clean = shapes::box(12, 10, 8, Vec3(1.0, 0.8, 0.6));
+  writeOff(dir / "clean.off", clean);
+  REQUIRE(geoshiftCli("noise " + q(dir / "clean.off") + " -o " + q(dir / "noisy.off") + " --amount 0.3 --seed 2").code == 0);
+  const double noisy = rmsToClean(dir / "noisy.off", dir / "clean.off");
+  REQUIRE(noisy > 0);
+
+  Run r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "bilateral.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("denoise bilateral: 594 vertices in 1 part"));
+  CHECK_THAT(r.err, Catch::Contains(" ms"));
+  CHECK(rmsToClean(dir / "bilateral.off", dir / "clean.off") < 0.5 * noisy);
+
+  r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "edge.off") +
+                  " --neighbors edge --normal-iterations 30 --sigma-s 0.3 --sigma-c 1 --vertex-iterations 20"
+                  " --flip-guard input-or-target");
+  REQUIRE(r.code == 0);
+  CHECK(rmsToClean(dir / "edge.off", dir / "clean.off") < 0.6 * noisy);
+
+  r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "taubin.off") + " --method taubin --taubin-iterations 5");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("denoise taubin"));
+  CHECK(rmsToClean(dir / "taubin.off", dir / "clean.off") < noisy);
+}
+
+TEST_CASE("cli: denoise refuses bad input without writing anything", "[cli][denoise]") {
+  const fs::path dir = tempDir("cli-denoise-bad");
+  writeOff(dir / "sphere.off", shapes::icosphere(2));
+  Run r = geoshiftCli("denoise " + q(dir / "missing.off") + " -o " + q(dir / "out.off"));
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Catch::Contains("missing.off"));
+  r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --method magic");
+  CHECK(r.code != 0);
+  CHECK_THAT(r.err, Catch::Contains("magic"));
+  r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --sigma-s 0");
+  CHECK(r.code != 0);
+  r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --method taubin --mu 0.1");
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Catch::Contains("mu"));
+  CHECK_FALSE(fs::exists(dir / "out.off"));
+}
