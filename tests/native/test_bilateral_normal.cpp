@@ -68,7 +68,11 @@ TEST_CASE("bilateral normal filtering denoises a CAD block and keeps its edges",
     for (double x : e) s += x;
     return s / e.size();
   }();
+  const Mesh input = m;
   const BilateralNormalResult r = bilateralNormalDenoise(m);
+  int flipped = 0;
+  for (int f = 0; f < m.faceCount(); ++f) flipped += faceCross(m, f).dot(faceCross(input, f)) <= 0;
+  CHECK(flipped == 0);
   const std::vector<double> errors = featureEdgeErrors(clean, m);
   REQUIRE(errors.size() == 4u * (20 + 14 + 10));  // every box edge segment, nothing else
   double mean = 0;
@@ -76,7 +80,7 @@ TEST_CASE("bilateral normal filtering denoises a CAD block and keeps its edges",
   mean /= errors.size();
   std::vector<double> sorted = errors;
   std::sort(sorted.begin(), sorted.end());
-  INFO("noise " << amount << " AEL: RMS " << noisy << " -> " << rmsTo(m, clean) << "; feature dihedral error "
+  INFO("noise " << amount << " AEL " << (distribution == NoiseDistribution::Fixed ? "fixed" : "uniform") << ": RMS " << noisy << " -> " << rmsTo(m, clean) << "; feature dihedral error "
                 << noisyEdges << "° -> mean " << mean << "°, median " << sorted[sorted.size() / 2]
                 << "°, 90th percentile " << sorted[sorted.size() * 9 / 10] << "°; sigma_c " << r.sigmaSpatial);
   CHECK(rmsTo(m, clean) < 0.5 * noisy);
