@@ -19,7 +19,7 @@ log() { printf '[bootstrap] %s\n' "$*"; }
 
 # --- system packages -------------------------------------------------------------------------
 pkgs=(cmake g++ make pkg-config libeigen3-dev libtinygltf-dev nlohmann-json3-dev catch2
-      libtinyobjloader-dev libcli11-dev libbenchmark-dev)
+      libtinyobjloader-dev libcli11-dev libbenchmark-dev libtiff-dev)
 [ "$wasm" = 1 ] && pkgs+=(emscripten)
 [ "$browser" = 1 ] && pkgs+=(chromium)
 missing=()
