@@ -22,9 +22,21 @@ const cases = [
     reason: /JSON is malformed/,
   },
   {
+    // Draco is supported (three's decoder, served by the app); damaged Draco data is an error.
     name: 'draco.glb',
-    contents: tetraGlb({ extraJson: { extensionsUsed: ['KHR_draco_mesh_compression'], extensionsRequired: ['KHR_draco_mesh_compression'] } }),
-    reason: /this file uses Draco compression, not supported yet/,
+    contents: tetraGlb({
+      extraJson: {
+        extensionsUsed: ['KHR_draco_mesh_compression'],
+        extensionsRequired: ['KHR_draco_mesh_compression'],
+        meshes: [{
+          primitives: [{
+            attributes: { POSITION: 0 },
+            extensions: { KHR_draco_mesh_compression: { bufferView: 0, attributes: { POSITION: 0 } } },
+          }],
+        }],
+      },
+    }),
+    reason: /damaged/,
   },
   {
     name: 'external.gltf',

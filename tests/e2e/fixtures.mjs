@@ -118,3 +118,95 @@ export function tetraCoff() {
     ...TETRA.triangles.map((t) => `3 ${t.join(' ')}`),
   ].join('\n') + '\n';
 }
+
+/**
+ * A torus as glTF exporters write it: an (n+1) × (m+1) grid of vertices whose last row and column
+ * repeat the first (a UV seam), with normals and 32-bit indices. Returns { positions, normals,
+ * indices } as plain arrays.
+ */
+export function torus(n = 48, m = 24, R = 1, r = 0.35) {
+  const positions = [], normals = [], indices = [];
+  for (let j = 0; j <= m; j++) {
+    for (let i = 0; i <= n; i++) {
+      const u = (2 * Math.PI * i) / n, v = (2 * Math.PI * j) / m;
+      const c = [Math.cos(u) * Math.cos(v), Math.sin(u) * Math.cos(v), Math.sin(v)];
+      positions.push(Math.cos(u) * (R + r * Math.cos(v)), Math.sin(u) * (R + r * Math.cos(v)), r * Math.sin(v));
+      normals.push(...c);
+    }
+  }
+  const at = (i, j) => j * (n + 1) + i;
+  for (let j = 0; j < m; j++) {
+    for (let i = 0; i < n; i++) indices.push(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1));
+  }
+  return { positions, normals, indices };
+}
+
+/**
+ * A GLB scene of several meshes, each in its own node (with a translation, to check the scene
+ * survives export): meshes = [{ positions, normals?, indices }], plain arrays.
+ */
+export function sceneGlb(meshes) {
+  const parts = [];
+  const bufferViews = [];
+  const accessors = [];
+  let offset = 0;
+  const add = (array, componentType, type, count, extra = {}) => {
+    const bytes = Buffer.from(array.buffer);
+    bufferViews.push({ buffer: 0, byteOffset: offset, byteLength: bytes.length });
+    parts.push(bytes);
+    offset += bytes.length;
+    accessors.push({ bufferView: bufferViews.length - 1, componentType, count, type, ...extra });
+    return accessors.length - 1;
+  };
+  const gltfMeshes = meshes.map((mesh) => {
+    const p = new Float32Array(mesh.positions);
+    const min = [0, 1, 2].map((k) => Math.min(...p.filter((_, i) => i % 3 === k)));
+    const max = [0, 1, 2].map((k) => Math.max(...p.filter((_, i) => i % 3 === k)));
+    const attributes = { POSITION: add(p, 5126, 'VEC3', p.length / 3, { min, max }) };
+    if (mesh.normals) attributes.NORMAL = add(new Float32Array(mesh.normals), 5126, 'VEC3', p.length / 3);
+    const indices = add(new Uint32Array(mesh.indices), 5125, 'SCALAR', mesh.indices.length);
+    return { primitives: [{ attributes, indices }] };
+  });
+  const json = {
+    asset: { version: '2.0', generator: 'geoshift e2e fixtures' },
+    scene: 0,
+    scenes: [{ nodes: meshes.map((_, i) => i) }],
+    nodes: meshes.map((_, i) => ({ mesh: i, name: `part-${i}`, translation: [3 * i, 0, 0] })),
+    meshes: gltfMeshes,
+    accessors,
+    bufferViews,
+    buffers: [{ byteLength: offset }],
+  };
+  return glb(json, Buffer.concat(parts));
+}
+
+const COMPONENT_ARRAYS = { 5120: Int8Array, 5121: Uint8Array, 5122: Int16Array, 5123: Uint16Array, 5125: Uint32Array, 5126: Float32Array };
+const TYPE_SIZES = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4 };
+
+/** Reads a GLB: { json, accessor(index) -> typed array (count × components) }. */
+export function parseGlb(buffer) {
+  let json, bin;
+  for (let at = 12; at < buffer.length;) {
+    const length = buffer.readUInt32LE(at);
+    const type = buffer.readUInt32LE(at + 4);
+    const chunk = buffer.subarray(at + 8, at + 8 + length);
+    if (type === 0x4e4f534a) json = JSON.parse(chunk.toString());
+    else if (type === 0x004e4942) bin = chunk;
+    at += 8 + length;
+  }
+  const accessor = (index) => {
+    const a = json.accessors[index];
+    const view = json.bufferViews[a.bufferView];
+    const Typed = COMPONENT_ARRAYS[a.componentType];
+    const size = TYPE_SIZES[a.type];
+    const stride = view.byteStride ?? size * Typed.BYTES_PER_ELEMENT;
+    const start = (view.byteOffset ?? 0) + (a.byteOffset ?? 0);
+    const out = new Typed(a.count * size);
+    for (let i = 0; i < a.count; i++) {
+      const bytes = Uint8Array.from(bin.subarray(start + i * stride, start + i * stride + size * Typed.BYTES_PER_ELEMENT));
+      out.set(new Typed(bytes.buffer), i * size);
+    }
+    return out;
+  };
+  return { json, accessor };
+}

@@ -25,9 +25,10 @@ const CHROMIUM = {
 
 /**
  * Starts server and browser before the file's tests and opens the app with its startup sample
- * loaded. The returned object is filled in by then: { url, page, pageErrors }.
+ * loaded. The returned object is filled in by then: { url, page, pageErrors }. `query` is appended
+ * to the page's URL (e.g. '?build=single' forces the single-threaded wasm build).
  */
-export function useApp() {
+export function useApp({ query = '' } = {}) {
   const app = { url: '', page: null, pageErrors: [] };
   let server = null;
   let browser = null;
@@ -47,7 +48,7 @@ export function useApp() {
     browser = await chromium.launch(CHROMIUM);
     app.page = await browser.newPage({ viewport: { width: 800, height: 540 } });
     app.page.on('pageerror', (error) => app.pageErrors.push(error));
-    await app.page.goto(app.url);
+    await app.page.goto(app.url + query);
     await app.page.evaluate(() => window.__geoshift.ready);
   });
   after(async () => {
@@ -100,4 +101,42 @@ export function assertMeshVisible(image, what) {
     `${what}: mesh not centred (${JSON.stringify(a.box)})`);
   assert.ok(Math.max(a.box.width, a.box.height) > 0.4, `${what}: mesh too small (${JSON.stringify(a.box)})`);
   return a;
+}
+
+/** Selects a preset, sets parameters (by key), runs it and waits until the run is over. */
+export async function runPreset(page, presetId, values = {}) {
+  await page.getByTestId('preset-select').selectOption(presetId);
+  await setParams(page, values);
+  await page.getByTestId('run-button').click();
+  await page.evaluate(() => window.__geoshift.idle());
+  await page.evaluate(() => window.__geoshift.settled());
+}
+
+/**
+ * Types numbers into the lil-gui fields of the current preset; choices (shown by label, sent by
+ * value) are set through the page's hook.
+ */
+export async function setParams(page, values) {
+  for (const [key, value] of Object.entries(values)) {
+    const field = page.locator(`[data-param="${key}"]`);
+    if (typeof value === 'string') await page.evaluate(([k, v]) => window.__geoshift.setParam(k, v), [key, value]);
+    else {
+      const input = field.locator('input').first();
+      await input.fill(String(value));
+      await input.press('Enter');
+    }
+  }
+}
+
+export async function positions(page) {
+  return page.evaluate(() => window.__geoshift.positions());
+}
+
+export async function lastRun(page) {
+  return page.evaluate(() => window.__geoshift.lastRun());
+}
+
+/** The GLB that Export would download, as a Buffer. */
+export async function exportedGlb(page) {
+  return Buffer.from(await page.evaluate(() => window.__geoshift.exportGlb()), 'base64');
 }

@@ -100,6 +100,21 @@ export function analyze(image) {
   };
 }
 
+/** Fraction of the non-background pixels whose channels spread by more than `spread` (0..255). */
+export function colourfulFraction(image, spread = 40) {
+  const background = pixel(image, 0, 0);
+  let covered = 0, colourful = 0;
+  for (let y = 0; y < image.height; y++) {
+    for (let x = 0; x < image.width; x++) {
+      const p = pixel(image, x, y);
+      if (!differs(p, background, 24)) continue;
+      covered++;
+      if (Math.max(...p) - Math.min(...p) > spread) colourful++;
+    }
+  }
+  return covered ? colourful / covered : 0;
+}
+
 /** Fraction of pixels that differ noticeably between two same-sized images. */
 export function differenceFraction(a, b) {
   if (a.width !== b.width || a.height !== b.height) return 1;

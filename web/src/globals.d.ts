@@ -9,6 +9,8 @@ interface GeoshiftTestHooks {
   settled(): Promise<void>;
   /** What the worker runs: { threaded, threads, ops }; rejects when it cannot start. */
   workerReady(): Promise<{ threaded: boolean; threads: number; ops: string[] }>;
+  /** Sets a parameter of the current preset, as if chosen in the panel (choices by value). */
+  setParam(key: string, value: unknown): void;
   /** Resolves when no filter is running. */
   idle(): Promise<void>;
   /** The report of the last successful run (time, vertices, iterations, error), or null. */

@@ -111,6 +111,7 @@ function start(): Promise<void> {
       await app.settled();
     },
     workerReady: () => workerReady,
+    setParam: (key: string, value: unknown) => panel.set(key, value),
     idle: () => filters.idle(),
     lastRun: () => filters.lastReport,
     lastError: () => filters.lastError,

@@ -28,7 +28,7 @@ export class ProgressBar {
     }
     const elapsed = (now - this.stageStart) / 1000;
     let eta = '';
-    if (stageFraction > 0.05 && stageFraction < 1 && elapsed > 0.5) {
+    if (stageFraction > 0.002 && stageFraction < 1 && elapsed > 0.75) {
       const left = (elapsed * (1 - stageFraction)) / stageFraction;
       eta = left < 1 ? ', under a second left' : `, about ${left < 90 ? `${Math.round(left)} s` : `${Math.round(left / 60)} min`} left`;
     }

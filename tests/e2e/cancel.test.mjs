@@ -1,0 +1,55 @@
+// A long run reports progress at least 5 times a second; Cancel stops it within half a second,
+// leaves the mesh as it was, and the next run succeeds. Both ways of cancelling are exercised: the
+// shared flag of the threaded build and terminating the worker of the single-threaded one.
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import { positions, runPreset, setParams, useApp } from './harness.mjs';
+
+for (const build of ['threaded', 'single']) {
+  const app = useApp({ query: `?build=${build}` });
+
+  test(`${build}: progress, cancel within 0.5 s, then a second run succeeds`, async () => {
+    const { page } = app;
+    const info = await page.evaluate(() => window.__geoshift.workerReady());
+    assert.equal(info.threaded, build === 'threaded');
+    const before = await positions(page);
+
+    await page.getByTestId('preset-select').selectOption('taubin');
+    await setParams(page, { iterations: 100000 });
+    await page.getByTestId('run-button').click();
+    // Let it run for a while, then measure the rate of progress messages over one second.
+    await page.waitForFunction(() => window.__geoshift.progressEvents().some((e) => e.stage === 'taubin'), null, { timeout: 10_000 });
+    await page.waitForTimeout(1200);
+    const rate = await page.evaluate(() => {
+      const events = window.__geoshift.progressEvents().filter((e) => e.stage === 'taubin');
+      const last = events.at(-1).at;
+      return events.filter((e) => e.at > last - 1000).length;
+    });
+    assert.ok(rate >= 5, `${rate} progress messages in the last second`);
+    assert.equal(await page.getByTestId('progress').getAttribute('data-state'), 'running');
+    assert.match(await page.getByTestId('progress').textContent(), /taubin — \d+%, about .* left/);
+    await page.screenshot({ path: `test-output/e2e/cancel-${build}-running.png` });
+
+    const elapsed = await page.evaluate(async () => {
+      const t0 = performance.now();
+      document.querySelector('[data-testid="cancel-button"]').click();
+      await window.__geoshift.idle();
+      return performance.now() - t0;
+    });
+    assert.ok(elapsed < 500, `cancel took ${elapsed.toFixed(0)} ms`);
+    assert.match(await page.evaluate(() => window.__geoshift.lastError()), /Cancelled/);
+    assert.equal(await page.getByTestId('cancel-button').isDisabled(), true);
+    assert.equal(await page.getByTestId('run-button').isDisabled(), false);
+    assert.deepEqual(await positions(page), before, 'a cancelled run changed the mesh');
+    await page.screenshot({ path: `test-output/e2e/cancel-${build}-cancelled.png` });
+
+    await runPreset(page, 'taubin', { iterations: 5 });
+    const report = await page.evaluate(() => window.__geoshift.lastRun());
+    assert.ok(report, await page.evaluate(() => window.__geoshift.lastError()));
+    assert.notDeepEqual(await positions(page), before);
+  });
+
+  test(`${build}: no uncaught errors in the page`, () => {
+    assert.deepEqual(app.pageErrors.map(String), []);
+  });
+}
