@@ -7,7 +7,7 @@
 #include "geoshift/error.hpp"
 
 #ifdef __EMSCRIPTEN_PTHREADS__
-#include <emscripten/em_js.h>
+#include <emscripten/emscripten.h>
 // Workers in the pool (idle or running); threads beyond it cannot start while the caller blocks.
 EM_JS(int, geoshift_pthread_pool_size, (), {
   return PThread.unusedWorkers.length + PThread.runningWorkers.length;

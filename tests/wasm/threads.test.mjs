@@ -42,3 +42,30 @@ for (const [name, mesh] of meshes()) {
     }
   });
 }
+
+// The ops of run(), on kept meshes: same bits from both builds.
+const opCases = [
+  ['noise', { amount: 0.4, seed: 5 }],
+  ['smooth', { iterations: 4, weights: 'cotangent' }],
+  ['curvature', { kind: 'gauss' }],
+  ['geodesic', { source: 3 }],
+];
+for (const [op, params] of opCases) {
+  test(`threaded and single-threaded run('${op}') agree bit for bit`, () => {
+    const mesh = saddle(30);
+    const results = [single, threaded].map((m) => {
+      const { handle } = m.loadMesh(mesh.positions, mesh.indices);
+      const r = m.run(handle, op, params);
+      m.freeMesh(handle);
+      assert.equal(r.ok, true, r.error);
+      return r;
+    });
+    const arrays = (r) => [r.positions, r.colors, ...Object.values(r.scalars)].filter(Boolean);
+    const [a, b] = results.map(arrays);
+    assert.equal(a.length, b.length);
+    assert.ok(a.length > 0, `${op} returned no arrays`);
+    a.forEach((array, i) => assert.ok(Buffer.from(b[i].buffer).equals(Buffer.from(array.buffer)), `${op}: array ${i} differs in its bits`));
+    assert.equal(results[0].stats.threadsAvailable, 1);
+    assert.ok(results[1].stats.threadsAvailable >= 1);
+  });
+}
