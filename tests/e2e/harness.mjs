@@ -15,7 +15,7 @@ const webRoot = fileURLToPath(new URL('../../web/', import.meta.url));
 export const outputDir = fileURLToPath(new URL('../../test-output/e2e/', import.meta.url));
 
 // As TOOLCHAIN.md prescribes; `npx playwright install` cannot download browsers here.
-const CHROMIUM = {
+export const CHROMIUM = {
   executablePath: '/usr/bin/chromium',
   args: [
     '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
