@@ -61,13 +61,18 @@ int inCircle(const IPoint& a, const IPoint& b, const IPoint& c, const IPoint& d)
 std::vector<int> firstOfEqual(const std::vector<IPoint>& points, const std::vector<int>& candidates,
                               int pointCount) {
   std::vector<int> keptAs(pointCount, -1);
-  std::vector<int> order = candidates;
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const IPoint &p = points[a], &q = points[b];
-    return p.x != q.x ? p.x < q.x : (p.y != q.y ? p.y < q.y : a < b);
-  });
-  for (size_t i = 0; i < order.size(); ++i)
-    keptAs[order[i]] = (i > 0 && points[order[i]] == points[order[i - 1]]) ? keptAs[order[i - 1]] : order[i];
+  struct Key {
+    std::int64_t x, y;
+    int index;
+    bool operator<(const Key& o) const { return x != o.x ? x < o.x : (y != o.y ? y < o.y : index < o.index); }
+  };
+  std::vector<Key> keys(candidates.size());  // sorted by value, not through the indices: fewer cache misses
+  for (size_t i = 0; i < candidates.size(); ++i) keys[i] = {points[candidates[i]].x, points[candidates[i]].y, candidates[i]};
+  std::sort(keys.begin(), keys.end());
+  for (size_t i = 0; i < keys.size(); ++i) {
+    const bool same = i > 0 && keys[i].x == keys[i - 1].x && keys[i].y == keys[i - 1].y;
+    keptAs[keys[i].index] = same ? keptAs[keys[i - 1].index] : keys[i].index;
+  }
   return keptAs;
 }
 
@@ -327,9 +332,10 @@ void Sweep::run(std::vector<int> use, InsertionOrder order, const Progress& prog
     cy_ = ay + (bx * cl - qx * bl) * d;
   }
   if (order == InsertionOrder::Sweep) {
-    std::vector<double> key(p_.size());
-    for (int i : use) key[i] = dist2(i, cx_, cy_);
-    std::sort(use.begin(), use.end(), [&](int a, int b) { return key[a] < key[b] || (key[a] == key[b] && a < b); });
+    std::vector<std::pair<double, int>> keyed(use.size());
+    for (size_t k = 0; k < use.size(); ++k) keyed[k] = {dist2(use[k], cx_, cy_), use[k]};
+    std::sort(keyed.begin(), keyed.end());
+    for (size_t k = 0; k < use.size(); ++k) use[k] = keyed[k].second;
   }
   hullStart_ = i0;
   hullNext_[i0] = hullPrev_[i2] = i1;
