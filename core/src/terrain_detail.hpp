@@ -32,6 +32,20 @@ inline std::int64_t orient(const IPoint& a, const IPoint& b, const IPoint& c) {
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
+// Z-order (Morton) key of a snapped point clamped to [0, 2^32): sorting by it keeps neighbours
+// close in memory.
+inline std::uint64_t mortonKey(const IPoint& p) {
+  auto spread = [](std::int64_t c) {
+    std::uint64_t v = static_cast<std::uint64_t>(c < 0 ? 0 : (c > 0xffffffff ? 0xffffffff : c));
+    v = (v | (v << 16)) & 0x0000ffff0000ffffull;
+    v = (v | (v << 8)) & 0x00ff00ff00ff00ffull;
+    v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0full;
+    v = (v | (v << 2)) & 0x3333333333333333ull;
+    return (v | (v << 1)) & 0x5555555555555555ull;
+  };
+  return spread(p.x) | (spread(p.y) << 1);
+}
+
 // > 0 when d is strictly inside the circle through the counter-clockwise a, b, c.
 int inCircle(const IPoint& a, const IPoint& b, const IPoint& c, const IPoint& d);
 

@@ -92,22 +92,10 @@ namespace {
 
 using namespace terrain_detail;
 
-// Spatially coherent order (Morton code of the snapped xy) so that each walk starts near its point.
+// Spatially coherent order so that each walk starts near its point.
 std::vector<int> mortonOrder(const std::vector<IPoint>& q) {
-  auto spread = [](std::uint64_t v) {
-    v &= 0xffffffffu;
-    v = (v | (v << 16)) & 0x0000ffff0000ffffull;
-    v = (v | (v << 8)) & 0x00ff00ff00ff00ffull;
-    v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0full;
-    v = (v | (v << 2)) & 0x3333333333333333ull;
-    return (v | (v << 1)) & 0x5555555555555555ull;
-  };
   std::vector<std::pair<std::uint64_t, int>> keyed(q.size());
-  for (size_t i = 0; i < q.size(); ++i) {
-    const auto x = static_cast<std::uint64_t>(std::clamp<std::int64_t>(q[i].x, 0, 0xffffffff));
-    const auto y = static_cast<std::uint64_t>(std::clamp<std::int64_t>(q[i].y, 0, 0xffffffff));
-    keyed[i] = {spread(x) | (spread(y) << 1), static_cast<int>(i)};
-  }
+  for (size_t i = 0; i < q.size(); ++i) keyed[i] = {mortonKey(q[i]), static_cast<int>(i)};
   std::sort(keyed.begin(), keyed.end());
   std::vector<int> order(q.size());
   for (size_t i = 0; i < q.size(); ++i) order[i] = keyed[i].second;

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <random>
 #include <set>
@@ -344,4 +345,25 @@ TEST_CASE("procedural terrain: fixed reference values", "[terrain][procedural]")
   CHECK(z == 0x1.9452ba61e5f06p+8);
   CHECK(veg == 0x1.6b3334885f9b1p+9);
   CHECK(cls == 872.0);
+}
+
+TEST_CASE("terrain calls report progress and stop when cancelled", "[terrain][progress]") {
+  std::atomic<bool> cancel{false};
+  int reports = 0;
+  Progress p;
+  p.cancel = &cancel;
+  p.report = [&](double f, std::string_view) {
+    CHECK(f >= 0.0);
+    CHECK(f <= 1.0);
+    if (++reports == 2) cancel = true;  // stop after the second report
+  };
+  TerrainOptions o;
+  o.size = 300;
+  CHECK_THROWS_AS(proceduralTerrain(o, p), Cancelled);
+  cancel = false, reports = 0;
+  CHECK_THROWS_AS(delaunay2d(randomPoints(200000, 3), {}, p), Cancelled);
+  cancel = false, reports = 0;
+  TerrainPoints pts;
+  pts.positions = randomPoints(200000, 4);
+  CHECK_THROWS_AS(pointTerrain(pts, {}, p), Cancelled);
 }
