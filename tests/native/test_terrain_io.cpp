@@ -298,3 +298,86 @@ TEST_CASE("ASCII PLY with faces and a classification property reads as points", 
   CHECK(m.faces.size() == 2u);
   CHECK(m.attributes.get("_HEIGHT_ABOVE_GROUND").values[3] == Approx(4.0));
 }
+
+namespace {
+
+// A tiled, uncompressed float32 GeoTIFF built byte by byte (so the reader is checked against the
+// TIFF 6.0 and GeoTIFF 1.0 layouts, not against libtiff's writer): 20 x 18 cells in 16 x 16 tiles,
+// PixelIsPoint, tie point (0, 0) -> (500000, 4000000), 10 m cells, GDAL_NODATA -9999.
+std::string tiledGeoTiff(const std::vector<float>& cells) {
+  const int w = 20, h = 18, tile = 16, tiles = 4;
+  std::string b(8, '\0');
+  b[0] = 'I', b[1] = 'I';
+  put<std::uint16_t>(b, 2, 42);
+  put<std::uint32_t>(b, 4, 8);
+  struct Entry {
+    std::uint16_t tag, type;
+    std::uint32_t count, value;
+  };
+  const int nEntries = 16;
+  size_t data = 8 + 2 + 12 * nEntries + 4;
+  std::string extra;
+  auto place = [&](const void* p, size_t n) {
+    const auto at = static_cast<std::uint32_t>(data + extra.size());
+    extra.append(static_cast<const char*>(p), n);
+    return at;
+  };
+  const double scale[3] = {10, 10, 0}, tie[6] = {0, 0, 0, 500000, 4000000, 0};
+  const std::uint16_t keys[12] = {1, 1, 0, 2, 1024, 0, 1, 1, 1025, 0, 1, 2};
+  const char nodata[6] = "-9999";
+  const auto scaleAt = place(scale, sizeof scale), tieAt = place(tie, sizeof tie);
+  const auto keysAt = place(keys, sizeof keys), nodataAt = place(nodata, sizeof nodata);
+  std::uint32_t offsets[tiles], counts[tiles];
+  const auto offsetsAt = place(offsets, sizeof offsets), countsAt = place(counts, sizeof counts);
+  for (int t = 0; t < tiles; ++t) {
+    std::vector<float> px(tile * tile, 0.0f);  // padding beyond the image is ignored by readers
+    const int tx = t % 2, ty = t / 2;
+    for (int r = 0; r < tile; ++r)
+      for (int c = 0; c < tile; ++c) {
+        const int col = tx * tile + c, row = ty * tile + r;
+        if (col < w && row < h) px[r * tile + c] = cells[row * w + col];
+      }
+    offsets[t] = place(px.data(), px.size() * 4);
+    counts[t] = tile * tile * 4;
+  }
+  std::memcpy(&extra[offsetsAt - data], offsets, sizeof offsets);
+  std::memcpy(&extra[countsAt - data], counts, sizeof counts);
+  const Entry entries[nEntries] = {
+      {256, 4, 1, static_cast<std::uint32_t>(w)}, {257, 4, 1, static_cast<std::uint32_t>(h)}, {258, 3, 1, 32},
+      {259, 3, 1, 1}, {262, 3, 1, 1}, {277, 3, 1, 1}, {284, 3, 1, 1}, {322, 3, 1, tile}, {323, 3, 1, tile},
+      {324, 4, tiles, offsetsAt}, {325, 4, tiles, countsAt}, {339, 3, 1, 3}, {33550, 12, 3, scaleAt},
+      {33922, 12, 6, tieAt}, {34735, 3, 12, keysAt}, {42113, 2, 6, nodataAt}};
+  std::string ifd(2 + 12 * nEntries + 4, '\0');
+  put<std::uint16_t>(ifd, 0, nEntries);
+  for (int i = 0; i < nEntries; ++i) {
+    put(ifd, 2 + 12 * i, entries[i].tag), put(ifd, 4 + 12 * i, entries[i].type);
+    put(ifd, 6 + 12 * i, entries[i].count), put(ifd, 10 + 12 * i, entries[i].value);
+  }
+  return b + ifd + extra;
+}
+
+}  // namespace
+
+TEST_CASE("tiled float GeoTIFF with PixelIsPoint and nodata", "[terrain][geotiff]") {
+  const auto dir = tempDir("terrain-tif");
+  std::vector<float> cells(20 * 18);
+  for (int r = 0; r < 18; ++r)
+    for (int c = 0; c < 20; ++c) cells[r * 20 + c] = 0.5f * c - 0.25f * r + 50.0f;
+  cells[0] = -9999.0f;               // nodata corner
+  cells[5 * 20 + 17] = NAN;          // NaN is nodata too (across the tile border at column 16)
+  spit(dir / "t.tif", tiledGeoTiff(cells));
+  const ElevationGrid g = readGeoTiff((dir / "t.tif").string());
+  REQUIRE(g.width == 20);
+  REQUIRE(g.height == 18);
+  CHECK(!g.geographic);
+  CHECK(std::isnan(g.values[0]));
+  CHECK(std::isnan(g.values[5 * 20 + 17]));
+  CHECK(g.values[17 * 20 + 19] == 0.5 * 19 - 0.25 * 17 + 50.0);  // last cell, in the fourth tile
+  const TerrainMesh m = gridTerrain(g);
+  CHECK(m.positions.size() == 20u * 18u - 2u);
+  // Brute-force face count: quads with 4 valid corners give 2, with 3 give 1.
+  CHECK(m.faces.size() == 2u * 19u * 17u - 1u - 4u);
+  // PixelIsPoint: cell (col, row) is centred at the tie point plus (10 col, -10 row).
+  CHECK(m.positions[0] == Vec3(500010.0, 4000000.0, 50.5));
+  CHECK(m.positions.back() == Vec3(500190.0, 3999830.0, 0.5 * 19 - 0.25 * 17 + 50.0));
+}
