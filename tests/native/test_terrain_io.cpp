@@ -381,3 +381,17 @@ TEST_CASE("tiled float GeoTIFF with PixelIsPoint and nodata", "[terrain][geotiff
   CHECK(m.positions[0] == Vec3(500010.0, 4000000.0, 50.5));
   CHECK(m.positions.back() == Vec3(500190.0, 3999830.0, 0.5 * 19 - 0.25 * 17 + 50.0));
 }
+
+TEST_CASE("cut or lying terrain files never crash: InputError naming the file", "[terrain][errors]") {
+  const auto simple = sharedData("pdal_testdata/las/simple.las");
+  GEOSHIFT_SKIP_IF_MISSING(simple, "pdal_testdata/las/simple.las");
+  const auto dir = tempDir("terrain-cuts");
+  const std::string las = slurp(*simple);
+  for (size_t n : {size_t(0), size_t(100), size_t(226), size_t(227), size_t(500), las.size() - 1}) {
+    spit(dir / "cut.las", las.substr(0, n));
+    CHECK(errorOf([&] { readTerrain((dir / "cut.las").string()); }).find("cut.las") != std::string::npos);
+  }
+  spit(dir / "huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000000\nproperty double x\n"
+                         "property double y\nproperty double z\nend_header\n" + std::string(64, '\0'));
+  CHECK(errorOf([&] { readPlyPoints((dir / "huge.ply").string()); }).find("truncated") != std::string::npos);
+}

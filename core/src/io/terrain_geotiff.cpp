@@ -92,7 +92,8 @@ ElevationGrid readGeoTiff(const std::string& path) {
   TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLEFORMAT, &format);
   TIFFGetFieldDefaulted(t, TIFFTAG_PLANARCONFIG, &planar);
   if (w == 0 || h == 0) fail("image has no pixels");
-  if (static_cast<uint64_t>(w) * h > (1u << 30)) fail(std::to_string(w) + " x " + std::to_string(h) + " pixels is too large");
+  if (static_cast<uint64_t>(w) * h > (1u << 28))
+    fail(std::to_string(w) + " x " + std::to_string(h) + " pixels is too large (at most 2^28 cells; crop or resample it first)");
   const bool okFormat = (format == SAMPLEFORMAT_UINT || format == SAMPLEFORMAT_INT)
                             ? (bits == 8 || bits == 16 || bits == 32 || bits == 64)
                             : format == SAMPLEFORMAT_IEEEFP && (bits == 32 || bits == 64);

@@ -172,6 +172,12 @@ TerrainPoints readPlyPoints(const std::string& path) {
     }
     if (ix < 0 || iy < 0 || iz < 0) fail("the vertex element has no x, y and z properties");
     if (e.props[ix].list || e.props[iy].list || e.props[iz].list) fail("vertex x/y/z are lists");
+    // Before allocating: every vertex takes at least its fixed-size properties (binary) or one
+    // character and a separator per property (ascii) of what is left of the file.
+    size_t minRecord = 0;
+    for (const Property& p : e.props) minRecord += format == 0 ? 2 : (p.list ? sizeOf(p.countType) : sizeOf(p.type));
+    if (minRecord > 0 && e.count > (b.size() - std::min(b.size(), bodyStart)) / minRecord)
+      fail("truncated: the header announces " + std::to_string(e.count) + " vertices, more than the data can hold");
     const bool color = ir >= 0 && ig >= 0 && ib >= 0;
     const double colorScale = !color ? 1.0 : e.props[ir].type == Type::U8 ? 1.0 / 255 : e.props[ir].type == Type::U16 ? 1.0 / 65535 : 1.0;
     pts.positions.resize(e.count);
