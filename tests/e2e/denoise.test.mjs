@@ -10,6 +10,15 @@ import { exportedGlb, openFile, runPreset, shoot, useApp } from './harness.mjs';
 
 const app = useApp();
 
+/** name -> translation of the named nodes; the exporter writes a matrix where the input had TRS. */
+function placements(json) {
+  const out = {};
+  for (const n of json.nodes) {
+    if (n.name) out[n.name] = n.translation ?? (n.matrix ? n.matrix.slice(12, 15) : [0, 0, 0]);
+  }
+  return out;
+}
+
 function noisyTorus() {
   const t = torus(64, 32);
   let s = 12345;
@@ -42,7 +51,7 @@ test('a GLB given to file-input is denoised and exported with the same vertex co
   const before = parseGlb(input);
   const after = parseGlb(await exportedGlb(page));
   assert.equal(after.json.meshes.length, 2);
-  assert.deepEqual(after.json.nodes.map((n) => n.translation), before.json.nodes.map((n) => n.translation));
+  assert.deepEqual(placements(after.json), placements(before.json));
   for (let m = 0; m < 2; m++) {
     const p0 = before.accessor(before.json.meshes[m].primitives[0].attributes.POSITION);
     const p1 = after.accessor(after.json.meshes[m].primitives[0].attributes.POSITION);
@@ -50,6 +59,33 @@ test('a GLB given to file-input is denoised and exported with the same vertex co
     assert.ok(p1.every(Number.isFinite), `mesh ${m}: non-finite positions`);
     if (m === 0) assert.ok(p1.some((v, i) => Math.abs(v - p0[i]) > 1e-6), 'the torus did not move');
   }
+});
+
+// The same scene with the ops that exist today: every mesh is filtered, the export keeps both
+// meshes, their nodes and vertex counts.
+test('a two-mesh GLB is smoothed mesh by mesh and exported with its scene', async () => {
+  const { page } = app;
+  const mesh = noisyTorus();
+  const tetra = { positions: TETRA.positions.flat(), indices: TETRA.triangles.flat() };
+  const input = sceneGlb([mesh, tetra]);
+  const s = await openFile(page, 'two-meshes.glb', input);
+  assert.equal(s.state, 'ok', s.text);
+  await runPreset(page, 'taubin', { iterations: 4 });
+  const report = await page.evaluate(() => window.__geoshift.lastRun());
+  assert.ok(report, await page.evaluate(() => window.__geoshift.lastError()));
+  assert.equal(report.meshes, 2);
+  assert.equal(report.vertices, mesh.positions.length / 3 + 4);
+  const before = parseGlb(input);
+  const after = parseGlb(await exportedGlb(page));
+  assert.deepEqual(placements(after.json), placements(before.json));
+  for (let m = 0; m < 2; m++) {
+    const p0 = before.accessor(before.json.meshes[m].primitives[0].attributes.POSITION);
+    const p1 = after.accessor(after.json.meshes[m].primitives[0].attributes.POSITION);
+    assert.equal(p1.length, p0.length, `mesh ${m}: vertex count changed`);
+    assert.ok(p1.every(Number.isFinite), `mesh ${m}: non-finite positions`);
+    assert.ok(p1.some((v, i) => Math.abs(v - p0[i]) > 1e-6), `mesh ${m} did not move`);
+  }
+  await shoot(page, 'two-meshes-smoothed');
 });
 
 test('no uncaught errors in the page', () => {

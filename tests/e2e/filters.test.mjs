@@ -37,6 +37,20 @@ test('Curvature runs with progress and shows a color-mapped scalar field with a 
   assert.equal(await page.getByTestId('legend').isVisible(), false);
 });
 
+test('Geodesic distance from a vertex is shown as a scalar field', async () => {
+  const { page } = app;
+  await runPreset(page, 'geodesic', { source: 5000 });
+  const report = await lastRun(page);
+  assert.ok(report, await page.evaluate(() => window.__geoshift.lastError()));
+  const [distance] = await page.evaluate(() => window.__geoshift.scalar('_geodesic'));
+  assert.equal(distance.length, 10000);
+  assert.equal(distance[5000], 0);
+  assert.ok(distance.filter((d) => d > 0).length > 9000, 'most vertices should be reached');
+  assert.match(await page.getByTestId('legend').textContent(), /Geodesic distance/);
+  await shoot(page, 'filters-geodesic');
+  await page.getByTestId('view-mode').selectOption('shaded');
+});
+
 test('Add noise then Taubin: vertices move, the error against the pre-noise mesh is reported', async () => {
   const { page } = app;
   const original = await positions(page);
