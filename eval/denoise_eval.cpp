@@ -131,7 +131,7 @@ std::vector<Source> cleanSources(const fs::path& data, bool quick) {
     procedural("CAD block", [] { return shapes::box(40, 28, 20, Vec3(1.0, 0.7, 0.5)); });
     procedural("Sphere", [] { return shapes::icosphere(5); });
     procedural("Torus", [] { return shapes::torus(120, 40); });
-    procedural("Double torus", [] { return shapes::doubleTorus(96); });
+    procedural("Double torus", [] { return shapes::doubleTorus(32); });
   }
   const std::vector<std::pair<std::string, std::string>> files = {
       {"Fandisk", "guided_denoising_bldeng/models/Fandisk0.3/Original.obj"},
