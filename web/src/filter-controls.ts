@@ -126,7 +126,7 @@ export class FilterControls {
         }, () => this.cancelRequested);
         if (states !== this.states) return; // another file was opened meanwhile
         this.lastReport = report;
-        this.afterRun(preset, report);
+        this.afterRun(preset, report, params.segments === true);
       } catch (error) {
         this.lastError = describeRunFailure(error);
         this.progress.idle(this.lastError);
@@ -140,14 +140,15 @@ export class FilterControls {
     return this.current;
   }
 
-  private afterRun(preset: Preset, report: RunReport): void {
+  private afterRun(preset: Preset, report: RunReport, wantsSegments: boolean): void {
     const seconds = (report.wallMs / 1000).toFixed(report.wallMs < 10_000 ? 2 : 1);
     this.progress.idle(`Done in ${seconds} s`);
     this.status.done(`${preset.name} done on ${this.fileName} in ${seconds} s`);
     this.showMetrics(report);
     this.viewMode.modelChanged(this.states.some((s) => s.mesh.geometry.getAttribute('color') !== undefined));
     this.panel.setScalarChoices(this.scalarChoices());
-    const shown = preset.showsScalar && report.scalars.includes(preset.showsScalar) ? preset.showsScalar : report.scalars[0];
+    const preferred = wantsSegments ? '_segment' : preset.showsScalar;
+    const shown = preferred && report.scalars.includes(preferred) ? preferred : report.scalars[0];
     this.scalars.setStates(this.states);
     if (shown && preset.op !== 'noise') {
       this.scalars.choose(shown);

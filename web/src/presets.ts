@@ -69,6 +69,15 @@ const mode = (v: 'ms' | 'bms'): ChoiceParam => ({
   options: { 'Mean shift (MS)': 'ms', 'Blurring mean shift (BMS)': 'bms' },
   tooltip: 'Mean shift keeps the input fixed while points climb to the nearest mode; blurring mean shift updates the signal after every pass (smoother, faster to flatten).',
 });
+const rangeUpdate: ChoiceParam = {
+  key: 'rangeUpdate', kind: 'choice', label: 'Value update', value: 'joint',
+  options: { 'Joint (moves with the point)': 'joint', 'Sampled (the paper)': 'sampled' },
+  tooltip: 'How a point\'s value follows it: its own mean shift step (smooths evenly sampled signals better) or read from the surface where the point is (the paper).',
+};
+const segments: FlagParam = {
+  key: 'segments', kind: 'flag', label: 'Also find segments', value: false,
+  tooltip: 'Label vertices that end at the same mode with one number, and show the labels as segments.',
+};
 const levels = (v: number) => num('levels', 'Wavelet levels L', '', v, 0, 12, 1, 'Filter a coarser version of the mesh L times simplified, then add the detail back. Faster on big meshes.');
 const alpha = (v: number) => num('alpha', 'Detail gain α', '', v, 0, 2, 0.05, 'How much of the removed fine detail is added back (0 = none, 1 = all of it).');
 
@@ -91,7 +100,7 @@ export const PRESETS: Preset[] = [
     params: [
       mode('ms'), hs(3),
       num('hr', 'Color tolerance h_r', 'linear RGB', 0.1, 0.01, 1, 0.01, 'How different two colors may be and still be blended. Smaller keeps more borders.'),
-      radius(9), kmax(50), eps(0.2),
+      radius(9), kmax(50), eps(0.2), passes(1), rangeUpdate, levels(0), alpha(1), segments,
     ],
   },
   {
@@ -101,7 +110,7 @@ export const PRESETS: Preset[] = [
     params: [
       mode('ms'), hs(3),
       num('hr', 'Curvature tolerance h_r', '1 / length', 0.25, 0.01, 10, 0.01, 'How different two curvature values may be and still be averaged.'),
-      radius(9), kmax(50), eps(0.2), levels(2), alpha(0),
+      radius(9), kmax(50), eps(0.2), passes(1), rangeUpdate, levels(2), alpha(0), segments,
     ],
   },
   {
@@ -110,7 +119,7 @@ export const PRESETS: Preset[] = [
     params: [
       mode('bms'), hs(5),
       num('hr', 'Value tolerance h_r', 'attribute units', 5, 0.01, 1000, 0.01, 'How different two attribute values may be and still be averaged.'),
-      radius(12), kmax(5), eps(0.2), passes(10), levels(6), alpha(1),
+      radius(15), kmax(5), eps(0.2), passes(10), rangeUpdate, levels(6), alpha(1), segments,
     ],
   },
   {
