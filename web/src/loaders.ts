@@ -176,6 +176,10 @@ export async function loadModel(fileName: string, data: ArrayBuffer): Promise<Lo
 /** The reason part of "Could not read NAME: REASON" for any error thrown while loading. */
 export function describeLoadFailure(error: unknown): string {
   if (error instanceof LoadError) return error.message;
+  // Typed array allocation failures (RangeError) mean the tab ran out of memory, not a bad file.
+  if (error instanceof RangeError && /alloc|memory|Invalid array length|Invalid typed array length/i.test(error.message)) {
+    return 'it is too large for the memory this browser tab may use (try a smaller file, or the command-line tool)';
+  }
   const message = error instanceof Error ? error.message : String(error);
   // three's loaders prefix messages with their class name, which means nothing to users.
   const plain = message.replace(/^THREE\.\w+:\s*/, '').trim();
