@@ -23,6 +23,7 @@ Command addCompare(CLI::App& app);
 Command addGeodesic(CLI::App& app);
 Command addLogMap(CLI::App& app);
 Command addExpMap(CLI::App& app);
+Command addWavelet(CLI::App& app);
 Command addTerrain(CLI::App& app);
 Command addFilter(CLI::App& app);
 Command addDenoise(CLI::App& app);

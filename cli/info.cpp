@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "geoshift/geometry.hpp"
+#include "geoshift/wavelet.hpp"
 
 namespace geoshift::cli {
 namespace {
@@ -19,7 +20,7 @@ const char* formatName(FileFormat f) {
   return "?";
 }
 
-void printPart(const Document& doc, const MeshPart& part) {
+void printPart(const Document& doc, const MeshPart& part, int levels) {
   const MeshBuild b = buildPart(doc, part);
   const Mesh& m = b.mesh;
   const BuildReport& r = b.report;
@@ -52,19 +53,30 @@ void printPart(const Document& doc, const MeshPart& part) {
   for (const ExtraAttribute& e : part.extras) attrs += ", " + e.name + " (" + std::to_string(e.dim) + ")";
   std::printf("  attributes          %s\n", attrs.c_str());
   std::printf("  instances           %zu\n", part.instances.size());
+  if (levels > 0) {
+    WaveletOptions o;
+    o.levels = levels;
+    const std::vector<int> counts = analyze(m, {}, o).vertexCounts();
+    std::printf("  wavelet levels      %zu:", counts.size() - 1);
+    for (size_t k = 0; k < counts.size(); ++k) std::printf("%s%d", k ? " -> " : " ", counts[k]);
+    std::printf(" vertices\n");
+  }
 }
 
 }  // namespace
 
 Command addInfo(CLI::App& app) {
   auto file = std::make_shared<std::string>();
+  auto levels = std::make_shared<int>(0);
   CLI::App* sub = app.add_subcommand("info", "Counts, average edge length, bounds, boundary loops, defects, attributes");
   sub->add_option("FILE", *file, "mesh file (.gltf .glb .obj .off)")->required();
-  return {sub, [file] {
+  sub->add_option("--levels", *levels, "also print the vertex count after each of this many wavelet levels")
+      ->check(CLI::NonNegativeNumber);
+  return {sub, [file, levels] {
             const Document doc = load(*file);
             std::printf("file    %s\nformat  %s\nparts   %zu\n", file->c_str(), formatName(doc.format),
                         doc.parts.size());
-            for (const MeshPart& part : doc.parts) printPart(doc, part);
+            for (const MeshPart& part : doc.parts) printPart(doc, part, *levels);
           }};
 }
 

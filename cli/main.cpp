@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
   using namespace geoshift::cli;
   const std::vector<Command> commands = {addInfo(app), addNoise(app), addSmooth(app),
                                          addCurvature(app), addCompare(app),  addGeodesic(app),
-                                         addLogMap(app),    addExpMap(app),     addFilter(app),
+                                         addLogMap(app),    addExpMap(app),     addWavelet(app),     addFilter(app),
                                          addDenoise(app),
                                          addTerrain(app)};
 
