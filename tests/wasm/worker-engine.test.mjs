@@ -123,3 +123,25 @@ test('requests are checked at run time', () => {
   assert.equal(isRequest({ type: 'cancel', id: 4, runId: 3 }), true);
   assert.equal(isRequest({ type: 'cancel', id: 4 }), false);
 });
+
+test('with the threaded module, the shared flag cancels too and results match the single-threaded engine', async () => {
+  const threaded = await loadGeoshift({ threads: true });
+  try {
+    const flag = new Int32Array(new SharedArrayBuffer(4));
+    const runs = [module, threaded].map((m) => {
+      const posted = [];
+      const engine = new Engine(new GeoshiftApi(m), (message) => posted.push(message), { cancelFlag: flag });
+      engine.handle(loadRequest(1));
+      engine.handle({ type: 'run', id: 2, meshId: 'm', op: 'smooth', params: { iterations: 6, weights: 'cotangent' } });
+      Atomics.store(flag, 0, 3);
+      engine.handle({ type: 'run', id: 3, meshId: 'm', op: 'smooth', params: { iterations: 100000 } });
+      Atomics.store(flag, 0, 0);
+      return posted;
+    });
+    for (const posted of runs) assert.deepEqual(posted.at(-1), { type: 'error', id: 3, kind: 'cancelled', message: 'cancelled' });
+    const result = (posted) => posted.find((m) => m.type === 'result' && m.id === 2).output.positions;
+    assert.deepEqual(result(runs[1]), result(runs[0]));
+  } finally {
+    threaded.close();
+  }
+});
