@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geoshift/error.hpp"
+#include "geoshift/geometry.hpp"
 #include "mean_shift_detail.hpp"
 
 namespace geoshift {
@@ -76,6 +77,13 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
     s.channels.push_back({&a, s.width, a.dim, a.kind == AttributeKind::UnitVector, c.kernel, 0.5 / (hr * hr), hr});
     s.width += a.dim;
   }
+  s.sampleWeight.assign(mesh.vertexCount(), 1.0);
+  if (o.areaWeighted) {
+    const std::vector<double> area = faceAreas(mesh);
+    std::fill(s.sampleWeight.begin(), s.sampleWeight.end(), 0.0);
+    for (int f = 0; f < mesh.faceCount(); ++f)
+      for (int v : mesh.face(f)) s.sampleWeight[v] += area[f] / 3;
+  }
   const double ael = g.averageEdgeLength();
   require(ael > 0, "the mesh has no edge of positive length");
   s.hs = o.spatialBandwidth * ael;
@@ -86,6 +94,14 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
   s.exact = o.exactCharts;
   s.drift = s.exact ? 0 : o.recentre * s.r;
   s.chartRadius = s.r + s.drift;
+  require(std::isfinite(o.chartCell) && o.chartCell >= 0, "chartCell must be >= 0 (got " + number(o.chartCell) + ")");
+  if (!s.exact && o.chartCell > 0) {
+    s.cell = o.chartCell * s.hs;
+    // A vertex of the cube is at most its diagonal from the anchor; the geodesic can be longer,
+    // and such a vertex then starts in its own chart.
+    s.anchorReach = std::sqrt(3.0) * s.cell;
+    s.anchorRadius = s.r + s.drift + s.anchorReach;
+  }
   s.kmax = o.maxIterations;
   s.joint = o.rangeUpdate == RangeUpdate::Joint;
   // Range changes count as converged below (ε/h_s)² in units of h_r: the same relative tolerance.
@@ -121,18 +137,28 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   climbers.emplace_back(s, std::move(first));
   for (int w = 1; w < result.threads; ++w) climbers.emplace_back(s, climbers.front().logMap.fork());
 
+  const Groups groups = groupVertices(s);
+  const int groupCount = static_cast<int>(groups.anchor.size());
+  ParallelOptions parallel = options.parallel;
+  if (s.cell > 0) parallel.chunk = std::max(1, parallel.chunk / 8);  // groups hold ~10 vertices
   std::vector<double> current = pack(s, n), next(current.size());
   std::vector<int> passIterations(n);
   long long total = 0;
   for (int pass = 0; pass < options.passes; ++pass) {
     const std::string stage =
         options.passes == 1 ? "mean shift" : "blurring pass " + std::to_string(pass + 1) + "/" + std::to_string(options.passes);
-    parallelFor(n, options.parallel, progress, stage, double(pass) / options.passes, double(pass + 1) / options.passes,
-                [&](int v, int worker) {
-                  const Climb c = climbers[worker].run(current, v, &next[static_cast<size_t>(v) * s.width]);
-                  result.modes[v] = c.mode;
-                  passIterations[v] = c.iterations;
-                  if (!c.converged) result.converged[v] = 0;
+    parallelFor(groupCount, parallel, progress, stage, double(pass) / options.passes,
+                double(pass + 1) / options.passes, [&](int g, int worker) {
+                  Climber& climber = climbers[worker];
+                  if (s.cell > 0) climber.setAnchor(groups.anchor[g]);
+                  for (int k = groups.start[g]; k < groups.start[g + 1]; ++k) {
+                    const int v = groups.vertex[k];
+                    const Climb c = climber.run(current, v, &next[static_cast<size_t>(v) * s.width]);
+                    result.modes[v] = c.mode;
+                    passIterations[v] = c.iterations;
+                    if (!c.converged) result.converged[v] = 0;
+                  }
+                  climber.clearAnchor();
                 });
     for (int v = 0; v < n; ++v) {
       result.iterations[v] += passIterations[v];

@@ -12,19 +12,34 @@ constexpr double kMaxExponent = 700;  // exp(−700) is a weight no sum notices;
 }
 
 Climber::Climber(const Setup& setup, LogMap map)
-    : logMap(std::move(map)), s_(setup), value_(setup.width), next_(setup.width), acc_(setup.width) {}
+    : logMap(std::move(map)), s_(setup), slot_(setup.mesh.vertexCount(), -1), value_(setup.width),
+      next_(setup.width), acc_(setup.width) {}
 
-void Climber::chartAt(const SurfacePoint& base) {
-  base_ = base;
-  const std::vector<LogMapEntry>& entries = logMap.compute(base, s_.chartRadius);
-  vertex_.resize(entries.size());
-  x_.resize(entries.size());
-  y_.resize(entries.size());
+void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
+  chart.base = base;
+  const std::vector<LogMapEntry>& entries = logMap.compute(base, radius);
+  chart.vertex.resize(entries.size());
+  chart.x.resize(entries.size());
+  chart.y.resize(entries.size());
   for (size_t e = 0; e < entries.size(); ++e) {
-    vertex_[e] = entries[e].vertex;
-    x_[e] = entries[e].distance * std::cos(entries[e].angle);
-    y_[e] = entries[e].distance * std::sin(entries[e].angle);
+    chart.vertex[e] = entries[e].vertex;
+    chart.x[e] = entries[e].distance * std::cos(entries[e].angle);
+    chart.y[e] = entries[e].distance * std::sin(entries[e].angle);
   }
+}
+
+void Climber::setAnchor(int vertex) {
+  clearAnchor();
+  if (s_.mesh.isIsolated(vertex)) return;
+  chartAt(anchor_, SurfacePoint::atVertex(s_.mesh, vertex), s_.anchorRadius);
+  for (size_t e = 0; e < anchor_.vertex.size(); ++e) slot_[anchor_.vertex[e]] = static_cast<int>(e);
+  anchored_ = true;
+}
+
+void Climber::clearAnchor() {
+  if (!anchored_) return;
+  for (int v : anchor_.vertex) slot_[v] = -1;
+  anchored_ = false;
 }
 
 void Climber::sample(const std::vector<double>& signal, const SurfacePoint& p, double* y) const {
@@ -83,20 +98,33 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
     return result;
   }
   SurfacePoint p = SurfacePoint::atVertex(s_.mesh, v);
-  chartAt(p);
+  const Chart* chart = &local_;
+  double qx = 0, qy = 0;  // the iterate in `chart`
+  double reach = s_.drift;  // how far from the chart's centre the iterate may go before a new chart
+  const int slot = anchored_ ? slot_[v] : -1;
+  if (slot >= 0 && anchor_.x[slot] * anchor_.x[slot] + anchor_.y[slot] * anchor_.y[slot] <= s_.anchorReach * s_.anchorReach) {
+    chart = &anchor_;
+    qx = anchor_.x[slot];
+    qy = anchor_.y[slot];
+    reach = s_.anchorReach + s_.drift;
+  } else {
+    chartAt(local_, p, s_.chartRadius);
+  }
   std::copy(own, own + width, value_.begin());
-  double qx = 0, qy = 0;  // the iterate in the chart of base_
   result.converged = false;
   for (int k = 0; k < s_.kmax; ++k) {
     double sw = 0, mx = 0, my = 0;
     if (s_.joint) std::fill(acc_.begin(), acc_.end(), 0.0);
-    for (size_t e = 0; e < vertex_.size(); ++e) {
-      const double dx = x_[e] - qx, dy = y_[e] - qy, d2 = dx * dx + dy * dy;
+    const std::vector<int>& vertex = chart->vertex;
+    const std::vector<double>& cx = chart->x;
+    const std::vector<double>& cy = chart->y;
+    for (size_t e = 0; e < vertex.size(); ++e) {
+      const double dx = cx[e] - qx, dy = cy[e] - qy, d2 = dx * dx + dy * dy;
       if (d2 > s_.r2) continue;
-      const double* f = &signal[static_cast<size_t>(vertex_[e]) * width];
+      const double* f = &signal[static_cast<size_t>(vertex[e]) * width];
       const double a = d2 * s_.invTwoHs2 + rangeExponent(value_.data(), f);
       if (!(a < kMaxExponent)) continue;
-      const double w = std::exp(-a);
+      const double w = s_.sampleWeight[vertex[e]] * std::exp(-a);
       sw += w;
       mx += w * dx;
       my += w * dy;
@@ -126,7 +154,7 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
     const double step = std::sqrt(mx * mx + my * my);
     bool rebase = s_.exact, stuck = false;
     if (step > 1e-3 * s_.eps) {  // a shorter step would not move the point measurably
-      const ExpMapResult trace = expMap(s_.geometry, base_, Vec2(qx + mx, qy + my));
+      const ExpMapResult trace = expMap(s_.geometry, chart->base, Vec2(qx + mx, qy + my));
       if (trace.hitBoundary) {
         // Clipped at the boundary: the chart's coordinates no longer say where the iterate is.
         stuck = (trace.end.position(s_.mesh) - p.position(s_.mesh)).norm() < 0.5 * s_.eps;
@@ -164,9 +192,11 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
       result.converged = true;
       break;
     }
-    if (rebase || qx * qx + qy * qy > s_.drift * s_.drift) {
-      chartAt(p);
+    if (rebase || qx * qx + qy * qy > reach * reach) {
+      chartAt(local_, p, s_.chartRadius);
+      chart = &local_;
       qx = qy = 0;
+      reach = s_.drift;
     }
   }
   std::copy(value_.begin(), value_.end(), out);

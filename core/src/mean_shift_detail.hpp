@@ -22,9 +22,11 @@ struct Setup {
   const Mesh& mesh;
   std::vector<Channel> channels;
   int width = 0;
+  std::vector<double> sampleWeight;  // per vertex: its area, or 1
   // Absolute units.
   double hs = 0, r = 0, eps = 0, invTwoHs2 = 0, r2 = 0, drift = 0, chartRadius = 0;
   double rangeTolerance2 = 0;
+  double cell = 0, anchorReach = 0, anchorRadius = 0;  // shared start charts (0: off)
   int kmax = 0;
   bool joint = false, exact = false;
 };
@@ -40,13 +42,23 @@ struct Climb {
 class Climber {
  public:
   Climber(const Setup& setup, LogMap logMap);
+  // The shared start chart of a cell: a log map at `vertex` that later run() calls start in when
+  // their vertex is within anchorReach of it. The result of a run does not depend on which runs
+  // came before it, only on the anchor set.
+  void setAnchor(int vertex);
+  void clearAnchor();
   // Mean shift from vertex v over the packed signal; writes the range value at the mode to out.
   Climb run(const std::vector<double>& signal, int v, double* out);
 
   LogMap logMap;
 
  private:
-  void chartAt(const SurfacePoint& base);
+  struct Chart {
+    SurfacePoint base;
+    std::vector<int> vertex;    // vertices within the chart's radius of base
+    std::vector<double> x, y;   // and their log-map coordinates in base's frame
+  };
+  void chartAt(Chart& chart, const SurfacePoint& base, double radius);
   // The range value of the signal at p (barycentric; unit vectors re-normalised).
   void sample(const std::vector<double>& signal, const SurfacePoint& p, double* y) const;
   // −log of the range kernel product between y and the signal row f.
@@ -54,11 +66,18 @@ class Climber {
   double rangeChange2(const double* a, const double* b) const;
 
   const Setup& s_;
-  std::vector<int> vertex_;          // the chart: vertices within chartRadius of base_
-  std::vector<double> x_, y_;        // and their log-map coordinates in base_'s frame
-  SurfacePoint base_;
+  Chart anchor_, local_;
+  bool anchored_ = false;
+  std::vector<int> slot_;  // per vertex: its entry in anchor_, or -1
   std::vector<double> value_, next_, acc_;
 };
+
+// Vertices grouped by cubes of side setup.cell (one group per vertex when it is 0), each with the
+// vertex nearest its centroid as anchor; groups and their order depend only on the positions.
+struct Groups {
+  std::vector<int> start, vertex, anchor;  // group g: vertex[start[g] .. start[g+1])
+};
+Groups groupVertices(const Setup& setup);
 
 // Fills result.segment / segmentCount from result.modes and the filtered packed signal.
 void segmentModes(const Setup& setup, const std::vector<double>& signal, MeanShiftResult& result);

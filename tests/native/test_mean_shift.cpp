@@ -17,6 +17,15 @@ namespace {
 
 Mesh build(const TriangleSoup& soup) { return buildMesh(soup).mesh; }
 
+// The samples' weights of the filter: a third of the adjacent faces' areas.
+std::vector<double> vertexAreas(const Mesh& mesh) {
+  std::vector<double> area(mesh.vertexCount(), 0.0);
+  const std::vector<double> faces = faceAreas(mesh);
+  for (int f = 0; f < mesh.faceCount(); ++f)
+    for (int v : mesh.face(f)) area[v] += faces[f] / 3;
+  return area;
+}
+
 AttributeSet colors(const std::vector<double>& rgb) {
   AttributeSet set(static_cast<int>(rgb.size() / 3));
   set.set("COLOR", 3, AttributeKind::Euclidean, rgb);
@@ -97,6 +106,7 @@ TEST_CASE("with h_r -> infinity one joint step is the geodesic Gaussian average"
   o.maxIterations = 1;
   o.rangeUpdate = RangeUpdate::Joint;
   const MeanShiftResult r = meanShift(geometry, set, o);
+  const std::vector<double> area = vertexAreas(mesh);
   const double hs = 1.5 * ael, radius = 4 * ael;
   double worst = 0;
   for (int i = 0; i < mesh.vertexCount(); ++i) {
@@ -104,7 +114,7 @@ TEST_CASE("with h_r -> infinity one joint step is the geodesic Gaussian average"
     for (int j = 0; j < mesh.vertexCount(); ++j) {
       const double d = (mesh.position(i) - mesh.position(j)).norm();
       if (d > radius) continue;
-      const double w = std::exp(-d * d / (2 * hs * hs));
+      const double w = area[j] * std::exp(-d * d / (2 * hs * hs));
       sw += w;
       sf += w * signal[j];
     }
@@ -128,6 +138,7 @@ TEST_CASE("with h_r -> infinity one joint step matches great-circle Gaussian wei
   o.maxIterations = 1;
   o.rangeUpdate = RangeUpdate::Joint;
   const MeanShiftResult r = meanShift(geometry, set, o);
+  const std::vector<double> area = vertexAreas(mesh);
   const double hs = 2 * ael, radius = 5 * ael;
   double worst = 0;
   for (int i = 0; i < mesh.vertexCount(); i += 7) {
@@ -135,7 +146,7 @@ TEST_CASE("with h_r -> infinity one joint step matches great-circle Gaussian wei
     for (int j = 0; j < mesh.vertexCount(); ++j) {
       const double d = std::acos(std::clamp(mesh.position(i).dot(mesh.position(j)), -1.0, 1.0));
       if (d > radius) continue;
-      const double w = std::exp(-d * d / (2 * hs * hs));
+      const double w = area[j] * std::exp(-d * d / (2 * hs * hs));
       sw += w;
       sf += w * signal[j];
     }

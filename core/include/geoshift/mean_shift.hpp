@@ -54,7 +54,15 @@ struct MeanShiftOptions {
   // and the chart is recomputed at the iterate when it drifts further. true: a fresh log map at
   // every iteration (the paper's procedure; slower).
   bool exactCharts = false;
-  double recentre = 0.5;
+  double recentre = 0.25;
+  // Vertices in one cube of this side (× h_s) also share the chart of the vertex nearest the
+  // cube's centre as their start chart (same approximation, with the start offset up to one side
+  // from the chart's centre); 0: every vertex computes its own.
+  double chartCell = 1.0;
+  // Samples weighted by their vertex area (a third of the adjacent faces' areas): the density is
+  // then one of the surface, not of the vertex sampling, so an iterate does not wander toward
+  // where the mesh happens to be finer (the paper weighs every vertex alike: false).
+  bool areaWeighted = true;
   bool segments = false;  // label vertices by their modes (MeanShiftResult::segment)
   ParallelOptions parallel;
 };

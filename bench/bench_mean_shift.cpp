@@ -1,0 +1,114 @@
+// Mean shift with the paper's parameter sets (ALGORITHMS.md §0.4) on tori of 10k and 100k vertices,
+// on one thread and on all: milliseconds per vertex (the paper's Table 2 works out to about 1 ms per
+// vertex for MS and 3 ms for BMS on one 3 GHz thread; our target is 20× less per thread).
+// Arguments: workload, vertices (10k / 100k), threads (1 / 0 = all), charts (0 reused / 1 exact).
+// Counters: ms_per_vertex (wall time / vertices), iterations (mean per vertex per pass), converged.
+// Every run filters every vertex of the mesh once (one benchmark iteration).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "geoshift/geometry.hpp"
+#include "geoshift/mean_shift.hpp"
+#include "geoshift/presets.hpp"
+#include "geoshift/shapes.hpp"
+
+namespace {
+
+using namespace geoshift;
+
+struct Fixture {
+  Mesh mesh;
+  SurfaceGeometry geometry;
+  AttributeSet color, normal, scalar;
+  explicit Fixture(int vertices)
+      : mesh(buildMesh(vertices > 50000 ? shapes::torus(500, 200) : shapes::torus(160, 64)).mesh), geometry(mesh) {
+    const int n = mesh.vertexCount();
+    // Deterministic pseudo-noise, the same on every machine.
+    std::uint64_t state = 88172645463325252ULL;
+    const auto noise = [&] {
+      state ^= state << 13;
+      state ^= state >> 7;
+      state ^= state << 17;
+      return static_cast<double>(state % 2000001) / 1e6 - 1.0;
+    };
+    std::vector<double> rgb, veg, nrm;
+    for (int v = 0; v < n; ++v) {
+      const Vec3 p = mesh.position(v);
+      const bool a = std::sin(6 * std::atan2(p.y(), p.x())) > 0;  // six color sectors around the torus
+      for (double c : {a ? 0.9 : 0.1, 0.4, a ? 0.2 : 0.8}) rgb.push_back(c + 0.1 * noise());
+      veg.push_back((a ? 20.0 : 2.0) + 3 * noise());  // vegetation height in meters, two stands
+    }
+    for (const Vec3& v : vertexNormals(mesh)) {
+      const Vec3 d = (v + 0.3 * Vec3(noise(), noise(), noise())).normalized();
+      nrm.insert(nrm.end(), {d.x(), d.y(), d.z()});
+    }
+    color = AttributeSet(n);
+    color.set("COLOR", 3, AttributeKind::Euclidean, rgb);
+    normal = AttributeSet(n);
+    normal.set("NORMAL", 3, AttributeKind::UnitVector, nrm);
+    scalar = AttributeSet(n);
+    scalar.set("_VEGETATION_HEIGHT", 1, AttributeKind::Euclidean, veg);
+  }
+};
+
+const Fixture& fixture(int vertices) {
+  static std::map<int, std::unique_ptr<Fixture>> cache;
+  auto& f = cache[vertices];
+  if (!f) f = std::make_unique<Fixture>(vertices);
+  return *f;
+}
+
+// 0 color, 1 denoise normals (§4.1), 2 terrain-ms, 3 terrain-bms, 4 curvature-ms, 5 curvature-bms
+// (curvature sets on the vegetation scalar: same bandwidths, the signal's scale does not change the cost much).
+const char* const kNames[] = {"color", "denoise-normals", "terrain-ms", "terrain-bms", "curvature-ms", "curvature-bms"};
+
+void BM_MeanShift(benchmark::State& state) {
+  const int workload = static_cast<int>(state.range(0));
+  const Fixture& f = fixture(static_cast<int>(state.range(1)));
+  MeanShiftOptions o;
+  const AttributeSet* signal = &f.scalar;
+  switch (workload) {
+    case 0: o = filterPreset("color").options; signal = &f.color; break;
+    case 1:
+      o.channels = {{"NORMAL", 0.45, RangeKernel::NormalSimilarity}};
+      o.radius = 4;
+      o.spatialBandwidth = 3;
+      o.epsilon = 0.2;
+      o.maxIterations = 50;
+      signal = &f.normal;
+      break;
+    case 2: o = filterPreset("terrain-ms").options; break;
+    case 3: o = filterPreset("terrain-bms").options; break;
+    case 4: o = filterPreset("curvature-ms").options; break;
+    default: o = filterPreset("curvature-bms").options; break;
+  }
+  o.parallel.threads = static_cast<int>(state.range(2));
+  o.exactCharts = state.range(3) != 0;
+  MeanShiftResult r;
+  for (auto _ : state) r = meanShift(f.geometry, *signal, o);
+  const int n = f.mesh.vertexCount();
+  state.SetLabel(std::string(kNames[workload]) + (o.exactCharts ? " exact" : "") + " threads=" + std::to_string(r.threads));
+  state.counters["ms_per_vertex"] = benchmark::Counter(r.seconds * 1e3 / n);
+  state.counters["iterations"] = benchmark::Counter(r.meanIterations);
+  state.counters["converged"] = benchmark::Counter(r.convergedFraction);
+  state.counters["vertices"] = benchmark::Counter(n);
+}
+
+void arguments(benchmark::internal::Benchmark* b) {
+  for (int workload = 0; workload < 6; ++workload)
+    for (int vertices : {10000, 100000}) {
+      // The 100k runs of the widest kernels (terrain h_s = 8 AEL) take minutes: run them only on
+      // request with --benchmark_filter.
+      for (int threads : {1, 0}) b->Args({workload, vertices, threads, 0});
+      if (vertices == 10000) b->Args({workload, vertices, 1, 1});
+    }
+}
+
+BENCHMARK(BM_MeanShift)->Apply(arguments)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
