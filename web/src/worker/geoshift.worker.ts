@@ -28,8 +28,16 @@ const post = (message: Response, transfer: ArrayBuffer[] = []): void => scope.po
 let engine: Engine | null = null;
 const queued: unknown[] = [];
 
+/** Threads of the threaded build; its pthread pool (wasm/CMakeLists.txt) has the same size. */
+const MAX_THREADS = 8;
+
 async function start(init: Init): Promise<void> {
   const threaded = init.build === 'threaded' || (init.build === 'auto' && scope.crossOriginIsolated);
+  // std::thread::hardware_concurrency() reads navigator.hardwareConcurrency, and a core call asked
+  // for "all cores" would start that many threads; beyond the capped pool one would never start
+  // while the caller blocks. Capping what this worker reports keeps the two equal.
+  const cores = Math.min(navigator.hardwareConcurrency || 4, MAX_THREADS);
+  Object.defineProperty(navigator, 'hardwareConcurrency', { value: cores, configurable: true });
   const name = threaded ? 'geoshift_web_mt' : 'geoshift_web';
   const url = new URL(`${name}.js`, init.wasmBase).href;
   try {
@@ -39,7 +47,7 @@ async function start(init: Init): Promise<void> {
     const api = new GeoshiftApi(module);
     const flag = threaded && init.cancelFlag ? new Int32Array(init.cancelFlag) : undefined;
     engine = new Engine(api, post, flag ? { cancelFlag: flag } : {});
-    const threads = threaded ? Math.min(navigator.hardwareConcurrency || 4, 8) : 1;
+    const threads = threaded ? cores : 1;
     post({ type: 'ready', threaded, threads, ops: api.ops() });
     for (const message of queued.splice(0)) receive(message);
   } catch (e) {
