@@ -88,9 +88,10 @@ export const PRESETS: Preset[] = [
     fixed: { method: 'meanshift' },
     params: [
       radius(4), hs(3),
-      num('hr', 'Feature preservation h_r', 'radians', 0.45, 0.05, 3.14, 0.01, 'How different two normals may be and still be averaged. Smaller keeps more edges sharp.'),
+      num('hr', 'Feature preservation h_r', 'normal dissimilarity', 0.45, 0.05, 2, 0.01, 'How different two normals may be and still be averaged. Smaller keeps more edges sharp.'),
       kmax(50), eps(0.2), passes(3),
       num('vertexIterations', 'Vertex update steps', '', 20, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.'),
+      levels(0), alpha(1),
     ],
   },
   {
