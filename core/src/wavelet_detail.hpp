@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geoshift/mesh.hpp"
+#include "geoshift/wavelet.hpp"
 
 namespace geoshift::wavelet_detail {
 
@@ -31,6 +32,17 @@ struct PositionRows {
     return Vec3(r[0], r[1], r[2]);
   }
 };
+
+// Prediction weights of o over its ring (interior) or its two boundary neighbours (boundary), summing
+// to 1: the neighbours in `nbr`, the weights in `w`.
+void predictionWeights(int o, const Ring& r, const PositionRows& x, WaveletWeights kind, std::vector<int>& nbr,
+                       std::vector<double>& w);
+// Cosine of the turning angle of the boundary polyline at boundary vertex v.
+double turnCosine(int v, const Ring& r, const PositionRows& x);
+
+constexpr int kCostBands = 16;
+// The vertices in ascending cost, in kCostBands quantile bands, each band in vertex order.
+std::vector<int> bandedOrder(const std::vector<int>& vertices, const std::vector<double>& cost);
 
 class CollapseMesh {
  public:

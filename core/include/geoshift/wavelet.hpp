@@ -6,7 +6,10 @@
 //   ... filter mr.coarse / mr.coarseAttributes (e.g. mean shift on the coarse mesh) ...
 //   SynthesisResult r = synthesize(mr, mr.coarse.positions(), filtered, alpha);
 //
-// Positions and every attribute channel are lifted with the same weights. The fine mesh comes back
+// Positions and every attribute channel are lifted with the same weights, so the update also keeps
+// the area-weighted centroid; where the update of the positions would flip a face, the odd vertices
+// next to it send their update to their other even neighbours (still a minimum-norm u that keeps
+// Σ A f invariant). Boundary vertices: see WaveletOptions::boundaryAngle. The fine mesh comes back
 // with the input's connectivity and vertex order exactly; α = 1 on every level reconstructs the input
 // (to round-off), α = 0 drops the details, α > 1 enhances them.
 #include <span>
