@@ -41,7 +41,10 @@ struct VertexUpdateResult {
 // breaks either rule have their step halved, and the check repeats on the faces around them; a
 // vertex whose step was halved 8 times does not move this iteration. The current positions pass
 // both checks, so the loop ends and the result never has a face flipped relative to the input.
-// Faces of zero area in the input are exempt from the input check.
+// Faces of zero area in the input are exempt from the input check. With FlipGuard::InputOrTarget
+// the input check also passes when the face lies on the positive side of its target normal, so a
+// face the noise folded over may turn back; every face then ends facing its input or its target
+// normal. Cost: the guard re-checks only the faces around shortened steps.
 //
 // Preconditions: targetNormals has one entry per face. Entries are normalised here; a zero vector
 // means the face pulls on nothing. Throws InputError when the count is wrong, an entry is not
