@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "geoshift/bilateral_normal.hpp"
+#include "geoshift/denoise.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/smoothing.hpp"
 
@@ -18,7 +19,9 @@ namespace {
 
 struct DenoiseArgs {
   std::string in, out;
-  std::string method = "bilateral";
+  std::string method = "meanshift";
+  DenoiseOptions meanShift;
+  std::string rangeUpdate, preset, faceRule;
   BilateralNormalOptions bilateral;
   std::string neighborhood = "vertex";
   std::string flipGuard = "input";
@@ -42,6 +45,17 @@ VertexUpdateOptions vertexUpdateOf(const DenoiseArgs& a, VertexUpdateOptions o) 
 
 const std::vector<Method>& methods() {
   static const std::vector<Method> table = {
+      {"meanshift", "Riemannian mean shift of the vertex normals (the paper's 4.1), then the vertex update",
+       [](Mesh& mesh, const DenoiseArgs& a) {
+         DenoiseOptions o = a.meanShift;
+         if (a.rangeUpdate == "sampled") o.meanShift.rangeUpdate = RangeUpdate::Sampled;
+         if (a.rangeUpdate == "joint") o.meanShift.rangeUpdate = RangeUpdate::Joint;
+         if (a.faceRule == "mean") o.faceNormals = FaceNormalRule::Mean;
+         o.vertexUpdate = vertexUpdateOf(a, o.vertexUpdate);
+         const DenoiseResult r = denoise(mesh, o);
+         std::cerr << "geoshift: mean shift " << o.passes << " passes, iterations mean " << r.meanIterations
+                   << ", converged " << 100 * r.convergedFraction << "%, " << r.threads << " threads\n";
+       }},
       {"bilateral", "bilateral normal filtering (Zheng et al. 2011), then the vertex update",
        [](Mesh& mesh, const DenoiseArgs& a) {
          BilateralNormalOptions o = a.bilateral;
@@ -77,6 +91,26 @@ Command addDenoise(CLI::App& app) {
   }
   sub->add_option("--method", a->method, help.str())->check(CLI::IsMember(names))->capture_default_str();
 
+  MeanShiftOptions& ms = a->meanShift.meanShift;
+  sub->add_option("--passes", a->meanShift.passes, "meanshift: alternating passes of normal filtering and vertex update")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  sub->add_option("--hs", ms.spatialBandwidth, "meanshift: spatial bandwidth h_s in average edge lengths")->capture_default_str();
+  sub->add_option("--hr", ms.rangeBandwidth, "meanshift: range bandwidth h_r of the normal kernel (eq. 8)")->capture_default_str();
+  sub->add_option("--radius", ms.radius, "meanshift: truncation radius r in average edge lengths")->capture_default_str();
+  sub->add_option("--kmax", ms.maxIterations, "meanshift: most iterations per vertex and pass")->capture_default_str();
+  sub->add_option("--eps", ms.epsilon, "meanshift: stop when a step is shorter than this, in AEL")->capture_default_str();
+  sub->add_option("--range-update", a->rangeUpdate, "meanshift: sampled (the paper, default) or joint")
+      ->check(CLI::IsMember({"sampled", "joint"}));
+  sub->add_option("--threads", ms.parallel.threads, "meanshift: worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  sub->add_option("--face-normals", a->faceRule,
+                  "meanshift: consensus (default: corners that disagree with the face drop out) or mean (the paper)")
+      ->check(CLI::IsMember({"consensus", "mean"}));
+  sub->add_flag("--exact-charts", ms.exactCharts, "meanshift: a fresh log map at every iteration (slower reference)");
+  sub->add_option("--support-iterations", a->meanShift.support.iterations,
+                  "meanshift: Taubin steps of the smoothed copy that carries the log and exp maps")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  sub->add_option("--preset", a->preset, "paper: the paper's 4.1 settings (the defaults)")->check(CLI::IsMember({"paper"}));
   sub->add_option("--normal-iterations", a->bilateral.normalIterations, "bilateral: normal filtering iterations")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   sub->add_option("--sigma-c", a->bilateral.sigmaSpatial,

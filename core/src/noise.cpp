@@ -61,7 +61,11 @@ class Sampler {
   // Uniform on the sphere: an isotropic Gaussian vector, normalised.
   Vec3 direction() {
     for (;;) {
-      const Vec3 g(normal(), normal(), normal());
+      // Three statements, not three arguments: argument order is unspecified (g++ and em++ differ).
+      const double gx = normal();
+      const double gy = normal();
+      const double gz = normal();
+      const Vec3 g(gx, gy, gz);
       const double len = g.norm();
       if (len > 1e-12) return g / len;
     }

@@ -42,13 +42,8 @@ const meshes = [
   ['sphere', () => readOff(sphereOff), !fs.existsSync(sphereOff) && `${sphereOff} is not present`],
 ];
 
-// Random directions differ between the builds: core/src/noise.cpp draws them as
-// `Vec3 g(normal(), normal(), normal())`, whose argument evaluation order C++ leaves unspecified
-// (g++ right to left, em++/clang left to right). Marked todo until the core draws into locals.
-const RANDOM_DIRECTION_TODO = 'core bug: noise.cpp Sampler::direction depends on argument evaluation order';
-
 const cases = [
-  { op: 'noise', params: { amount: 0.3, distribution: 'uniform', seed: 7 }, cli: ['noise', '--amount', '0.3', '--dist', 'uniform', '--seed', '7'], field: 'positions', attribute: 'POSITION', todo: RANDOM_DIRECTION_TODO },
+  { op: 'noise', params: { amount: 0.3, distribution: 'uniform', seed: 7 }, cli: ['noise', '--amount', '0.3', '--dist', 'uniform', '--seed', '7'], field: 'positions', attribute: 'POSITION' },
   { op: 'noise', params: { amount: 0.5, direction: 'normal', distribution: 'gaussian', seed: 3 }, cli: ['noise', '--amount', '0.5', '--direction', 'normal', '--dist', 'gaussian', '--seed', '3'], field: 'positions', attribute: 'POSITION' },
   { op: 'smooth', params: { iterations: 5 }, cli: ['smooth', '--iterations', '5'], field: 'positions', attribute: 'POSITION' },
   { op: 'smooth', params: { iterations: 3, weights: 'cotangent', lambda: 0.4, mu: -0.45 }, cli: ['smooth', '--iterations', '3', '--weights', 'cotangent', '--lambda', '0.4', '--mu', '-0.45'], field: 'positions', attribute: 'POSITION' },
@@ -58,7 +53,7 @@ const cases = [
 
 for (const [name, make, skip] of meshes) {
   for (const c of cases) {
-    test(`${c.op} ${JSON.stringify(c.params)} on ${name}: wasm agrees with the native CLI`, { skip, todo: c.todo }, () => {
+    test(`${c.op} ${JSON.stringify(c.params)} on ${name}: wasm agrees with the native CLI`, { skip }, () => {
       const mesh = make();
       const off = path.join(dir, `${name}.off`);
       writeOff(off, mesh);
@@ -83,7 +78,6 @@ test('ops chain on a kept mesh: noise then smooth equals the CLI doing both', ()
   const off = path.join(dir, 'chain.off');
   writeOff(off, mesh);
   const { handle } = geoshift.loadMesh(mesh.positions, mesh.indices);
-  // Along the normals: see RANDOM_DIRECTION_TODO.
   assert.equal(geoshift.run(handle, 'noise', { amount: 0.4, seed: 11, direction: 'normal', distribution: 'uniform' }).ok, true);
   const smoothed = geoshift.run(handle, 'smooth', { iterations: 4 });
   assert.equal(smoothed.ok, true, smoothed.error);
