@@ -20,7 +20,9 @@ namespace {
 struct FilterArgs {
   std::string in, out, signal, mode, preset, rangeUpdate;
   std::optional<double> hs, hr, radius, eps;
-  std::optional<int> kmax, passes;
+  std::optional<int> kmax, passes, levels;
+  std::vector<double> alpha;
+  bool filterGeometry = false;
   int threads = 0;
   bool segments = false, exactCharts = false;
 };
@@ -33,8 +35,8 @@ FilterSettings settingsOf(const FilterArgs& a) {
     s.options = p.options;
     s.signal = p.signal;
     s.rangeGiven = true;
-    s.levels = p.levels;
-    s.detailGain = p.detailGain;
+    s.hybrid.levels = p.levels;
+    s.hybrid.alpha = {p.detailGain};
   }
   if (!a.signal.empty()) s.signal = a.signal;
   if (s.signal.empty()) s.signal = "color";
@@ -53,6 +55,9 @@ FilterSettings settingsOf(const FilterArgs& a) {
   if (a.kmax) o.maxIterations = *a.kmax;
   if (a.rangeUpdate == "sampled") o.rangeUpdate = RangeUpdate::Sampled;
   if (a.rangeUpdate == "joint") o.rangeUpdate = RangeUpdate::Joint;
+  if (a.levels) s.hybrid.levels = *a.levels;
+  if (!a.alpha.empty()) s.hybrid.alpha = a.alpha;
+  s.hybrid.filterGeometry = a.filterGeometry;
   o.exactCharts = a.exactCharts;
   o.segments = a.segments;
   o.parallel.threads = a.threads;
@@ -88,6 +93,13 @@ Command addFilter(CLI::App& app) {
       ->check(CLI::IsMember({"sampled", "joint"}));
   sub->add_option("--threads", a->threads, "worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
+  sub->add_option("--levels", a->levels,
+                  "wavelet levels: filter a coarse approximation and restore the details (Algorithm 2; default 0, "
+                  "or the preset's)");
+  sub->add_option("--alpha", a->alpha, "detail gain per level, finest first, or one for all: 1 restores the "
+                                       "details, 0 drops them, > 1 enhances (default 0, or the preset's)")
+      ->delimiter(',');
+  sub->add_flag("--filter-geometry", a->filterGeometry, "with --levels: the gains apply to the positions too");
   sub->add_flag("--segments", a->segments, "also label vertices by their modes: attribute _SEGMENT");
   sub->add_flag("--exact-charts", a->exactCharts, "a fresh log map at every iteration (slower reference)");
   return {sub, [a] {
@@ -104,7 +116,8 @@ Command addFilter(CLI::App& app) {
             for (MeshPart& part : doc.parts) {
               if (!missingSignal(doc, part, settings).empty()) continue;
               const MeshBuild b = buildPart(doc, part);
-              total.add(filterPart(doc, part, b, settings), b.mesh.vertexCount());
+              const HybridResult r = filterPart(doc, part, b, settings);
+              total.add(r.coarse, r.vertexCounts.back());
             }
             save(doc, a->out);
             std::printf("filter: %d vertices, iterations mean %.2f max %d, converged %.1f%%, %.3f s, %d threads\n",

@@ -68,7 +68,7 @@ std::string missingSignal(const Document& doc, const MeshPart& part, const Filte
   return "";
 }
 
-MeanShiftResult filterPart(const Document& doc, MeshPart& part, const MeshBuild& build, const FilterSettings& settings) {
+HybridResult filterPart(const Document& doc, MeshPart& part, const MeshBuild& build, const FilterSettings& settings) {
   const Mesh& mesh = build.mesh;
   const int n = mesh.vertexCount();
   const std::string where = doc.path + ": " + part.label;
@@ -135,11 +135,20 @@ MeanShiftResult filterPart(const Document& doc, MeshPart& part, const MeshBuild&
     progress.report = [](double f, std::string_view stage) {
       std::cerr << "\r" << stage << " " << static_cast<int>(100 * f) << "%   " << std::flush;
     };
-  MeanShiftResult r = meanShift(mesh, set, options, progress);
+  HybridResult hybrid = hybridMeanShift(mesh, set, options, settings.hybrid, progress);
   if (progress.report) std::cerr << "\n";
+  if (settings.hybrid.levels > 0) {
+    std::cerr << "geoshift: " << part.label << ": vertices per level";
+    for (int count : hybrid.vertexCounts) std::cerr << " " << count;
+    std::cerr << " (filtered the last)\n";
+  }
+  if (settings.hybrid.filterGeometry) {
+    for (size_t i = 0; i < part.positions.size(); ++i) part.positions[i] = hybrid.positions[build.vertexOf[i]];
+  }
+  const AttributeSet& filtered = hybrid.signal;
 
   for (const Source& s : sources) {
-    const Attribute& out = r.signal.get(s.name);
+    const Attribute& out = filtered.get(s.name);
     const std::vector<double> values = toCallerLayout(out.values, out.dim, build.vertexOf);
     if (s.kind == "color") {
       for (size_t i = 0; i < part.colors.size(); ++i)
@@ -158,12 +167,12 @@ MeanShiftResult filterPart(const Document& doc, MeshPart& part, const MeshBuild&
     }
   }
   if (options.segments) {
-    std::vector<double> labels(r.segment.begin(), r.segment.end());
+    std::vector<double> labels(hybrid.segment.begin(), hybrid.segment.end());
     std::erase_if(part.extras, [](const ExtraAttribute& e) { return e.name == "_SEGMENT"; });
     part.extras.push_back({"_SEGMENT", 1, toCallerLayout(labels, 1, build.vertexOf)});
-    std::cerr << "geoshift: " << part.label << ": " << r.segmentCount << " segments\n";
+    std::cerr << "geoshift: " << part.label << ": " << hybrid.segmentCount << " segments\n";
   }
-  return r;
+  return hybrid;
 }
 
 }  // namespace geoshift::cli

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "geoshift/mean_shift.hpp"
+#include "geoshift/hybrid.hpp"
 
 namespace geoshift::cli {
 
@@ -12,8 +12,7 @@ struct FilterSettings {
   std::string signal;        // color, normal, curvature, terrain, attribute names; comma-separated
   MeanShiftOptions options;
   bool rangeGiven = false;   // h_r came from the command line or a preset (else per-signal defaults)
-  int levels = 0;
-  double detailGain = 1;
+  HybridOptions hybrid;       // levels > 0: Algorithm 2 (wavelet analysis, filter, synthesis)
 };
 
 struct FilterSummary {
@@ -28,6 +27,6 @@ struct FilterSummary {
 std::string missingSignal(const Document& doc, const MeshPart& part, const FilterSettings& settings);
 
 // Filters the part's signal on its welded mesh and writes the result into the part.
-MeanShiftResult filterPart(const Document& doc, MeshPart& part, const MeshBuild& build, const FilterSettings& settings);
+HybridResult filterPart(const Document& doc, MeshPart& part, const MeshBuild& build, const FilterSettings& settings);
 
 }  // namespace geoshift::cli

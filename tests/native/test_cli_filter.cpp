@@ -113,3 +113,15 @@ TEST_CASE("filter explains bad requests", "[cli][filter]") {
   REQUIRE_THAT(r.err, Catch::Contains("h_s"));
   REQUIRE_FALSE(fs::exists(out));
 }
+
+TEST_CASE("filter --levels runs the hybrid filter and says what it filtered", "[cli][filter]") {
+  const fs::path dir = tempDir("cli-filter-levels");
+  const fs::path in = noisyColoredSphere(dir), out = dir / "out.glb";
+  const Run r = geoshiftCli("filter " + q(in) + " -o " + q(out) + " --hr 0.3 --levels 2 --alpha 0");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  REQUIRE_THAT(r.err, Catch::Contains("vertices per level 2562"));
+  const MeshPart a = readDocument(in.string()).parts.at(0), b = readDocument(out.string()).parts.at(0);
+  for (bool up : {true, false}) REQUIRE(regionVariance(b, up) * 3 <= regionVariance(a, up));
+  REQUIRE(geoshiftCli("filter " + q(in) + " -o " + q(out) + " --levels 2 --alpha 0,0,0").code == 1);
+}
