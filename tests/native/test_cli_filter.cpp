@@ -33,11 +33,12 @@ fs::path noisyColoredSphere(const fs::path& dir) {
   return path;
 }
 
-double regionVariance(const MeshPart& part, bool up) {
+// Over the vertices farther than `band` from the step at z = 0.
+double regionVariance(const MeshPart& part, bool up, double band = 0) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sq = Eigen::Vector3d::Zero();
   int n = 0;
   for (size_t v = 0; v < part.positions.size(); ++v) {
-    if ((part.positions[v].z() > 0) != up) continue;
+    if ((part.positions[v].z() > 0) != up || std::abs(part.positions[v].z()) < band) continue;
     const Eigen::Vector3d c = part.colors[v].head<3>();
     sum += c;
     sq += c.cwiseProduct(c);
@@ -122,6 +123,7 @@ TEST_CASE("filter --levels runs the hybrid filter and says what it filtered", "[
   REQUIRE(r.code == 0);
   REQUIRE_THAT(r.err, Catch::Contains("vertices per level 2562"));
   const MeshPart a = readDocument(in.string()).parts.at(0), b = readDocument(out.string()).parts.at(0);
-  for (bool up : {true, false}) REQUIRE(regionVariance(b, up) * 3 <= regionVariance(a, up));
+  // Away from the step (two edges of the sphere): dropping the details blends the vertices next to it.
+  for (bool up : {true, false}) REQUIRE(regionVariance(b, up, 0.15) * 5 <= regionVariance(a, up, 0.15));
   REQUIRE(geoshiftCli("filter " + q(in) + " -o " + q(out) + " --levels 2 --alpha 0,0,0").code == 1);
 }
