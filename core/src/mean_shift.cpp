@@ -63,7 +63,7 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
     for (const Attribute& a : signal.all()) wanted.push_back({a.name, 0, o.rangeKernel});
   require(!wanted.empty(), "no attribute to filter");
 
-  Setup s{g, mesh, {}};
+  Setup s{g, mesh, {}, 0, {}};
   for (const SignalChannel& c : wanted) {
     const Attribute& a = signal.get(c.attribute);
     const double hr = c.rangeBandwidth > 0 ? c.rangeBandwidth : o.rangeBandwidth;

@@ -18,13 +18,34 @@ Climber::Climber(const Setup& setup, LogMap map)
 void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
   chart.base = base;
   const std::vector<LogMapEntry>& entries = logMap.compute(base, radius);
-  chart.vertex.resize(entries.size());
-  chart.x.resize(entries.size());
-  chart.y.resize(entries.size());
-  for (size_t e = 0; e < entries.size(); ++e) {
-    chart.vertex[e] = entries[e].vertex;
-    chart.x[e] = entries[e].distance * std::cos(entries[e].angle);
-    chart.y[e] = entries[e].distance * std::sin(entries[e].angle);
+  const size_t n = entries.size();
+  chart.cell = 0.25 * s_.r;
+  chart.side = std::max(1, static_cast<int>(std::ceil(2 * radius / chart.cell)) + 1);
+  chart.origin = -radius;
+  const auto cellOf = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor((x - chart.origin) / chart.cell)), 0, chart.side - 1);
+  };
+  // Counting sort by cell; within a cell the log map's order (by distance) is kept.
+  chart.cellStart.assign(static_cast<size_t>(chart.side) * chart.side + 1, 0);
+  order_.resize(n);
+  std::vector<double>& xs = chart.x;
+  std::vector<double>& ys = chart.y;
+  xs.resize(n);
+  ys.resize(n);
+  for (size_t e = 0; e < n; ++e) {
+    const double x = entries[e].distance * std::cos(entries[e].angle), y = entries[e].distance * std::sin(entries[e].angle);
+    const int c = cellOf(y) * chart.side + cellOf(x);
+    order_[e] = c;
+    ++chart.cellStart[c + 1];
+  }
+  for (size_t c = 1; c < chart.cellStart.size(); ++c) chart.cellStart[c] += chart.cellStart[c - 1];
+  std::vector<int> fill(chart.cellStart.begin(), chart.cellStart.end() - 1);
+  chart.vertex.resize(n);
+  for (size_t e = 0; e < n; ++e) {
+    const int at = fill[order_[e]]++;
+    chart.vertex[at] = entries[e].vertex;
+    xs[at] = entries[e].distance * std::cos(entries[e].angle);
+    ys[at] = entries[e].distance * std::sin(entries[e].angle);
   }
 }
 
@@ -60,7 +81,7 @@ void Climber::sample(const std::vector<double>& signal, const SurfacePoint& p, d
   }
 }
 
-double Climber::rangeExponent(const double* y, const double* f) const {
+[[gnu::always_inline]] inline double Climber::rangeExponent(const double* y, const double* f) const {
   double a = 0;
   for (const Channel& c : s_.channels) {
     if (c.kernel == RangeKernel::NormalSimilarity) {
@@ -118,13 +139,18 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
     const std::vector<int>& vertex = chart->vertex;
     const std::vector<double>& cx = chart->x;
     const std::vector<double>& cy = chart->y;
-    for (size_t e = 0; e < vertex.size(); ++e) {
+    const auto cellOf = [&](double x) {
+      return std::clamp(static_cast<int>(std::floor((x - chart->origin) / chart->cell)), 0, chart->side - 1);
+    };
+    const int i0 = cellOf(qx - s_.r), i1 = cellOf(qx + s_.r), j0 = cellOf(qy - s_.r), j1 = cellOf(qy + s_.r);
+    for (int j = j0; j <= j1; ++j)
+    for (int e = chart->cellStart[j * chart->side + i0], last = chart->cellStart[j * chart->side + i1 + 1]; e < last; ++e) {
       const double dx = cx[e] - qx, dy = cy[e] - qy, d2 = dx * dx + dy * dy;
       if (d2 > s_.r2) continue;
       const double* f = &signal[static_cast<size_t>(vertex[e]) * width];
       const double a = d2 * s_.invTwoHs2 + rangeExponent(value_.data(), f);
       if (!(a < kMaxExponent)) continue;
-      const double w = s_.sampleWeight[vertex[e]] * std::exp(-a);
+      const double w = s_.sampleWeight[vertex[e]] * kernelExp(-a);
       sw += w;
       mx += w * dx;
       my += w * dy;
