@@ -2,6 +2,7 @@
 #include "geoshift/mean_shift.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -142,6 +143,11 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   ParallelOptions parallel = options.parallel;
   if (s.cell > 0) parallel.chunk = std::max(1, parallel.chunk / 8);  // groups hold ~10 vertices
   std::vector<double> current = pack(s, n), next(current.size());
+  // Blurring passes climb from the same vertices over the same domain: keep the start charts.
+  bool cacheCharts = s.cell > 0 && options.passes > 1 && options.chartCacheBytes > 0;
+  std::vector<Chart> cache(cacheCharts ? groupCount : 0);
+  std::atomic<long long> cached{0};
+  std::atomic<bool> cacheFull{false};
   std::vector<int> passIterations(n);
   long long total = 0;
   for (int pass = 0; pass < options.passes; ++pass) {
@@ -150,7 +156,18 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
     parallelFor(groupCount, parallel, progress, stage, double(pass) / options.passes,
                 double(pass + 1) / options.passes, [&](int g, int worker) {
                   Climber& climber = climbers[worker];
-                  if (s.cell > 0) climber.setAnchor(groups.anchor[g]);
+                  if (cacheCharts) {
+                    // Filled in the first pass; a chart is the same whichever worker computes it.
+                    if (pass == 0) {
+                      cache[g] = climber.anchorChart(groups.anchor[g]);
+                      const long long bytes = static_cast<long long>(cache[g].vertex.size()) * 20 +
+                                              static_cast<long long>(cache[g].cellStart.size()) * 4;
+                      if (cached.fetch_add(bytes) + bytes > options.chartCacheBytes) cacheFull = true;
+                    }
+                    climber.useAnchor(cache[g]);
+                  } else if (s.cell > 0) {
+                    climber.setAnchor(groups.anchor[g]);
+                  }
                   for (int k = groups.start[g]; k < groups.start[g + 1]; ++k) {
                     const int v = groups.vertex[k];
                     const Climb c = climber.run(current, v, &next[static_cast<size_t>(v) * s.width]);
@@ -160,6 +177,10 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
                   }
                   climber.clearAnchor();
                 });
+    if (cacheFull) {  // over budget: later passes compute their charts again (same results)
+      cacheCharts = false;
+      cache = {};
+    }
     for (int v = 0; v < n; ++v) {
       result.iterations[v] += passIterations[v];
       result.maxIterations = std::max(result.maxIterations, passIterations[v]);

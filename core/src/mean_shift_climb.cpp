@@ -52,15 +52,26 @@ void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
 void Climber::setAnchor(int vertex) {
   clearAnchor();
   if (s_.mesh.isIsolated(vertex)) return;
-  chartAt(anchor_, SurfacePoint::atVertex(s_.mesh, vertex), s_.anchorRadius);
-  for (size_t e = 0; e < anchor_.vertex.size(); ++e) slot_[anchor_.vertex[e]] = static_cast<int>(e);
-  anchored_ = true;
+  chartAt(own_, SurfacePoint::atVertex(s_.mesh, vertex), s_.anchorRadius);
+  useAnchor(own_);
+}
+
+Chart Climber::anchorChart(int vertex) {
+  Chart chart;
+  if (!s_.mesh.isIsolated(vertex)) chartAt(chart, SurfacePoint::atVertex(s_.mesh, vertex), s_.anchorRadius);
+  return chart;
+}
+
+void Climber::useAnchor(const Chart& chart) {
+  clearAnchor();
+  anchor_ = &chart;
+  for (size_t e = 0; e < chart.vertex.size(); ++e) slot_[chart.vertex[e]] = static_cast<int>(e);
 }
 
 void Climber::clearAnchor() {
-  if (!anchored_) return;
-  for (int v : anchor_.vertex) slot_[v] = -1;
-  anchored_ = false;
+  if (!anchor_) return;
+  for (int v : anchor_->vertex) slot_[v] = -1;
+  anchor_ = nullptr;
 }
 
 void Climber::sample(const std::vector<double>& signal, const SurfacePoint& p, double* y) const {
@@ -122,11 +133,11 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
   const Chart* chart = &local_;
   double qx = 0, qy = 0;  // the iterate in `chart`
   double reach = s_.drift;  // how far from the chart's centre the iterate may go before a new chart
-  const int slot = anchored_ ? slot_[v] : -1;
-  if (slot >= 0 && anchor_.x[slot] * anchor_.x[slot] + anchor_.y[slot] * anchor_.y[slot] <= s_.anchorReach * s_.anchorReach) {
-    chart = &anchor_;
-    qx = anchor_.x[slot];
-    qy = anchor_.y[slot];
+  const int slot = anchor_ ? slot_[v] : -1;
+  if (slot >= 0 && anchor_->x[slot] * anchor_->x[slot] + anchor_->y[slot] * anchor_->y[slot] <= s_.anchorReach * s_.anchorReach) {
+    chart = anchor_;
+    qx = anchor_->x[slot];
+    qy = anchor_->y[slot];
     reach = s_.anchorReach + s_.drift;
   } else {
     chartAt(local_, p, s_.chartRadius);

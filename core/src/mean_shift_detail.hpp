@@ -62,6 +62,18 @@ struct Climb {
   bool converged = true;
 };
 
+// Entries are binned on a square grid of side r/4 over [-R, R]², row by row, so that an
+// iteration reads only the rows and columns within r of its iterate: a chart (up to r + drift +
+// anchor reach) is several times wider than the kernel's support.
+struct Chart {
+  SurfacePoint base;
+  std::vector<int> vertex;    // vertices within the chart's radius of base
+  std::vector<double> x, y;   // and their log-map coordinates in base's frame
+  double origin = 0, cell = 1;  // grid: cell (i, j) covers origin + [i, i+1) cell, ...
+  int side = 0;
+  std::vector<int> cellStart;   // side² + 1 offsets into the entries, row-major
+};
+
 // A worker's solver and scratch; climbs one vertex at a time. The result of run() depends only on
 // the vertex and the signal, never on what the worker climbed before.
 class Climber {
@@ -71,6 +83,10 @@ class Climber {
   // their vertex is within anchorReach of it. The result of a run does not depend on which runs
   // came before it, only on the anchor set.
   void setAnchor(int vertex);
+  // The same with a chart computed before by anchorChart() (blurring passes keep them: the domain
+  // does not move between passes); it must outlive the runs.
+  void useAnchor(const Chart& chart);
+  Chart anchorChart(int vertex);
   void clearAnchor();
   // Mean shift from vertex v over the packed signal; writes the range value at the mode to out.
   Climb run(const std::vector<double>& signal, int v, double* out);
@@ -78,17 +94,6 @@ class Climber {
   LogMap logMap;
 
  private:
-  // Entries are binned on a square grid of side r/4 over [-R, R]², row by row, so that an
-  // iteration reads only the rows and columns within r of its iterate: a chart (up to r + drift +
-  // anchor reach) is several times wider than the kernel's support.
-  struct Chart {
-    SurfacePoint base;
-    std::vector<int> vertex;    // vertices within the chart's radius of base
-    std::vector<double> x, y;   // and their log-map coordinates in base's frame
-    double origin = 0, cell = 1;  // grid: cell (i, j) covers origin + [i, i+1) cell, ...
-    int side = 0;
-    std::vector<int> cellStart;   // side² + 1 offsets into the entries, row-major
-  };
   std::vector<int> order_;  // scratch of chartAt
   void chartAt(Chart& chart, const SurfacePoint& base, double radius);
   // The range value of the signal at p (barycentric; unit vectors re-normalised).
@@ -98,8 +103,8 @@ class Climber {
   double rangeChange2(const double* a, const double* b) const;
 
   const Setup& s_;
-  Chart anchor_, local_;
-  bool anchored_ = false;
+  Chart own_, local_;
+  const Chart* anchor_ = nullptr;
   std::vector<int> slot_;  // per vertex: its entry in anchor_, or -1
   std::vector<double> value_, next_, acc_;
 };

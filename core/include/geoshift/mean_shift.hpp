@@ -59,6 +59,9 @@ struct MeanShiftOptions {
   // cube's centre as their start chart (same approximation, with the start offset up to one side
   // from the chart's centre); 0: every vertex computes its own.
   double chartCell = 1.0;
+  // Blurring passes keep the start charts between passes up to this many bytes (then compute
+  // them again each pass; results are the same either way).
+  long long chartCacheBytes = 1LL << 30;
   // Samples weighted by their vertex area (a third of the adjacent faces' areas): the density is
   // then one of the surface, not of the vertex sampling, so an iterate does not wander toward
   // where the mesh happens to be finer (the paper weighs every vertex alike: false).
