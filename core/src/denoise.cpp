@@ -10,15 +10,7 @@ namespace geoshift {
 
 namespace {
 
-// Progress of a sub-step as the fraction [from, to] of the whole.
-Progress slice(const Progress& whole, double from, double to) {
-  Progress p;
-  p.cancel = whole.cancel;
-  if (whole.report)
-    p.report = [&whole, from, to](double f, std::string_view stage) { whole.report(from + (to - from) * f, stage); };
-  return p;
-}
-
+// FaceNormalRule::Consensus (denoise.hpp).
 std::vector<Vec3> consensusFaceNormals(const Mesh& mesh, const std::vector<Vec3>& vertexNormals, double bandwidth) {
   const std::vector<Vec3> own = faceNormals(mesh);
   std::vector<Vec3> out(mesh.faceCount());
@@ -44,7 +36,7 @@ DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress&
   DenoiseResult result;
   try {
     Mesh support = mesh;
-    taubinSmooth(support, options.support, slice(progress, 0, 0.02));
+    taubinSmooth(support, options.support, progress.slice(0, 0.02));
     const SurfaceGeometry supportGeometry(support);
     MeanShiftOptions ms = options.meanShift;
     ms.channels = {{"NORMAL", ms.rangeBandwidth, ms.rangeKernel}};
@@ -63,7 +55,7 @@ DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress&
       for (int v = 0; v < n; ++v)
         if (!(std::abs(flat[3 * v]) + std::abs(flat[3 * v + 1]) + std::abs(flat[3 * v + 2]) > 0)) flat[3 * v + 2] = 1;
       signal.set("NORMAL", 3, AttributeKind::UnitVector, std::move(flat));
-      const MeanShiftResult r = meanShift(supportGeometry, signal, ms, slice(progress, from, from + 0.8 * (to - from)));
+      const MeanShiftResult r = meanShift(supportGeometry, signal, ms, progress.slice(from, from + 0.8 * (to - from)));
       iterations += r.meanIterations;
       result.convergedFraction = r.convergedFraction;
       result.threads = r.threads;
@@ -75,7 +67,7 @@ DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress&
                                             ? faceNormalsFromVertexNormals(mesh, normals)
                                             : consensusFaceNormals(mesh, normals, ms.rangeBandwidth);
       const VertexUpdateResult u = updateVertices(mesh, targets,
-                                                  options.vertexUpdate, slice(progress, from + 0.8 * (to - from), to));
+                                                  options.vertexUpdate, progress.slice(from + 0.8 * (to - from), to));
       result.limitedSteps += u.limitedSteps;
       mesh.positions() = u.positions;
     }

@@ -6,18 +6,6 @@
 
 namespace geoshift {
 
-namespace {
-
-Progress slice(const Progress& whole, double from, double to) {
-  Progress p;
-  p.cancel = whole.cancel;
-  if (whole.report)
-    p.report = [&whole, from, to](double f, std::string_view stage) { whole.report(from + (to - from) * f, stage); };
-  return p;
-}
-
-}  // namespace
-
 HybridResult hybridMeanShift(const Mesh& mesh, const AttributeSet& signal, const MeanShiftOptions& options,
                              const HybridOptions& hybrid, const Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
@@ -45,10 +33,10 @@ HybridResult hybridMeanShift(const Mesh& mesh, const AttributeSet& signal, const
   }
   WaveletOptions w = hybrid.wavelet;
   w.levels = hybrid.levels;
-  const Multiresolution mr = analyze(mesh, channels, w, slice(progress, 0, 0.1));
+  const Multiresolution mr = analyze(mesh, channels, w, progress.slice(0, 0.1));
   result.vertexCounts = mr.vertexCounts();
-  result.coarse = meanShift(mr.coarse, mr.coarseAttributes, options, slice(progress, 0.1, 0.95));
-  const SynthesisResult fine = synthesize(mr, mr.coarse.positions(), result.coarse.signal, hybrid.alpha, slice(progress, 0.95, 1));
+  result.coarse = meanShift(mr.coarse, mr.coarseAttributes, options, progress.slice(0.1, 0.95));
+  const SynthesisResult fine = synthesize(mr, mr.coarse.positions(), result.coarse.signal, hybrid.alpha, progress.slice(0.95, 1));
   result.signal = fine.attributes;
   result.positions = hybrid.filterGeometry ? fine.mesh.positions() : mesh.positions();
   if (options.segments) {

@@ -20,6 +20,15 @@ struct Progress {
     if (cancelled()) throw Cancelled();
     if (report) report(fraction, stage);
   }
+  // The progress of a sub-step that is the fraction [from, to] of this one (same cancel flag).
+  // Refers to this Progress, which must outlive it.
+  Progress slice(double from, double to) const {
+    Progress p;
+    p.cancel = cancel;
+    if (report)
+      p.report = [this, from, to](double f, std::string_view stage) { report(from + (to - from) * f, stage); };
+    return p;
+  }
 };
 
 }  // namespace geoshift
