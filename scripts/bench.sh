@@ -10,6 +10,16 @@ for exe in build/native-release/bench/bench_*; do
   [ -x "$exe" ] || continue
   echo
   echo "== $(basename "$exe") =="
-  "$exe" --benchmark_filter="$filter" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  # The filter benchmarks run whole filters of minutes each: one repetition (their counters are
+  # per-vertex figures over thousands of vertices already).
+  reps=5
+  case "$(basename "$exe")" in bench_mean_shift | bench_hybrid) reps=1 ;; esac
+  "$exe" --benchmark_filter="$filter" --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true \
     --benchmark_display_aggregates_only=true 2>&1 | grep -v -E '_(mean|stddev|cv) ' 
 done
+
+# The same denoise job natively, in Node wasm (one thread) and in Chromium wasm (threads), with the
+# wasm/native speed ratio (issue 7). It reports rows it cannot run (no Chromium) and goes on.
+echo
+echo "== wasm vs native: denoise (bench/wasm/denoise.mjs) =="
+node bench/wasm/denoise.mjs || echo "bench/wasm/denoise.mjs failed"
