@@ -150,6 +150,10 @@ val run(int handle, const std::string& op, const val& params, const val& onProgr
       result.set("colors", floatsOut(toCallerLayout(*output.colors, 3, vertexOf)));
       if (output.colorsAreSignal) session.attributes.set("color", 3, AttributeKind::Euclidean, std::move(*output.colors));
     }
+    if (output.normals) {
+      result.set("normals", floatsOut(toCallerLayout(*output.normals, 3, vertexOf)));
+      session.attributes.set("normal", 3, AttributeKind::UnitVector, std::move(*output.normals));
+    }
     val scalars = val::object();
     for (auto& [name, values] : output.scalars) {
       scalars.set(name, floatsOut(toCallerLayout(values, 1, vertexOf)));

@@ -86,7 +86,38 @@ export interface OpParams {
   curvature: { kind?: 'abs' | 'mean' | 'gauss' | 'rms' };
   /** source: caller vertex index; radius in AEL (default: unlimited). */
   geodesic: { source?: number; radius?: number };
-  // Added with their ops (ops_filter.cpp, ops_denoise.cpp, ops_wavelet.cpp); untyped until then.
+  /**
+   * Mean shift of a vertex signal, as `geoshift filter`. signal: "color", "normal", "curvature",
+   * "terrain" or a scalar attribute's name (several joined by commas are filtered together).
+   * mode "ms" runs one pass, "bms" passes (default 10). hr in the signal's units (default: color
+   * 0.1, normal 0.45, others a tenth of their 10-90% spread); hs, radius (0 = 3 hs), eps in AEL.
+   * threads: 0 = every worker of the pool; results do not depend on it. levels > 0: the hybrid
+   * filter (Algorithm 2) on a mesh coarsened that many wavelet levels, the details added back times
+   * alpha (one gain for every level; default 0); filterGeometry: the positions get the gain too.
+   */
+  filter: {
+    signal?: string; mode?: 'ms' | 'bms'; passes?: number; hs?: number; hr?: number; radius?: number;
+    kmax?: number; eps?: number; rangeUpdate?: 'joint' | 'sampled'; segments?: boolean; threads?: number;
+    levels?: number; alpha?: number; filterGeometry?: boolean;
+  };
+  /**
+   * Denoising of the positions, as `geoshift denoise`. meanshift (default, the paper's 4.1): hs,
+   * radius, eps in AEL, hr of the normal kernel (eq. 8), passes of normal filtering + vertex update;
+   * rangeUpdate defaults to 'sampled' here (the paper's), faceNormals to 'consensus'.
+   * bilateral: normalIterations, sigmaC (AEL, 0 = automatic), sigmaS, neighbors. taubin:
+   * iterations, lambda, mu. A parameter of another method than the chosen one is an error.
+   * levels must be 0 (the core has no hybrid denoiser); alpha is accepted and unused then.
+   */
+  denoise: {
+    method?: 'meanshift' | 'bilateral' | 'taubin';
+    hs?: number; hr?: number; radius?: number; kmax?: number; eps?: number; passes?: number;
+    rangeUpdate?: 'joint' | 'sampled'; faceNormals?: 'consensus' | 'mean'; threads?: number;
+    supportIterations?: number; vertexIterations?: number;
+    normalIterations?: number; sigmaC?: number; sigmaS?: number; neighbors?: 'vertex' | 'edge';
+    iterations?: number; lambda?: number; mu?: number;
+    levels?: number; alpha?: number;
+  };
+  // Added with its op (ops_wavelet.cpp); untyped until then.
   [op: string]: Record<string, unknown>;
 }
 export type OpName = keyof OpParams & string;
@@ -99,7 +130,10 @@ export interface RunStats {
   weldedVertices: number;
   /** Threads an op could use in this build (1 in the single-threaded one). */
   threadsAvailable: number;
-  /** Op-specific figures: iterations, displacementRms, reachedVertices, ... */
+  /**
+   * Op-specific figures: iterations, displacementRms, reachedVertices; the mean shift ops add
+   * meanIterations, maxIterations (filter), convergedFraction, threads (used) and ms (core time).
+   */
   [key: string]: number | string;
 }
 
@@ -109,6 +143,8 @@ export interface RunSuccess {
   positions?: Float32Array;
   /** RGB per caller vertex, linear [0, 1]: a filtered color signal or a color map of a scalar. */
   colors?: Float32Array;
+  /** Unit normals per caller vertex, when the op filtered the normals (filter, signal "normal"). */
+  normals?: Float32Array;
   /** Named per-vertex scalars such as _CURVATURE, _GEODESIC (-1 = not reached), _SEGMENT. */
   scalars: Record<string, Float32Array>;
   stats: RunStats;

@@ -22,6 +22,8 @@ const std::vector<OpEntry>& opTable() {
       {"smooth", runSmooth, {"iterations", "lambda", "mu", "weights"}},
       {"curvature", runCurvature, {"kind"}},
       {"geodesic", runGeodesic, {"source", "radius"}},
+      {"filter", runFilter, {"signal", "mode", "passes", "hs", "hr", "radius", "kmax", "eps", "rangeUpdate", "segments", "threads", "levels", "alpha", "filterGeometry"}},
+      {"denoise", runDenoise, {"method", "hs", "hr", "radius", "kmax", "eps", "passes", "vertexIterations", "rangeUpdate", "faceNormals", "threads", "supportIterations", "normalIterations", "sigmaC", "sigmaS", "neighbors", "iterations", "lambda", "mu", "levels", "alpha"}},
   };
   return table;
 }

@@ -56,6 +56,8 @@ struct OpOutput {
   // (a color filter); otherwise they only visualise something (a curvature color map).
   std::optional<std::vector<double>> colors;
   bool colorsAreSignal = false;
+  // Unit normals per welded vertex (a normal filter); they replace the "normal" signal.
+  std::optional<std::vector<double>> normals;
   // Named per-welded-vertex scalars (e.g. "_CURVATURE", "_SEGMENT"); kept as signals of the session.
   std::vector<std::pair<std::string, std::vector<double>>> scalars;
   // Numbers worth showing after a run (iterations, ...); the dispatcher adds timing and counts.
@@ -76,5 +78,7 @@ OpOutput runNoise(const OpContext&);      // ops_noise.cpp
 OpOutput runSmooth(const OpContext&);     // ops_smooth.cpp
 OpOutput runCurvature(const OpContext&);  // ops_curvature.cpp
 OpOutput runGeodesic(const OpContext&);   // ops_geodesic.cpp
+OpOutput runFilter(const OpContext&);     // ops_filter.cpp
+OpOutput runDenoise(const OpContext&);    // ops_denoise.cpp
 
 }  // namespace geoshift::wasm

@@ -1,0 +1,104 @@
+// run(handle, 'denoise', ...) agrees with `geoshift denoise` (to 1e-5 relative) on a small noisy box
+// for every method, brings the box back toward its flat sides, gives the same bits for any thread
+// count, and refuses bad parameters with messages that name them.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+
+import { loadGeoshift } from './support.mjs';
+import { assertClose, box, jiggle, runNative, sameBits, writeCoff } from './filter-support.mjs';
+
+let geoshift;
+let threaded;
+let dir;
+before(async () => {
+  geoshift = await loadGeoshift();
+  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-denoise-'));
+});
+after(() => threaded?.close());
+
+const clean = box(6);
+const noisy = jiggle(clean, 0.06);
+
+function denoised(module, params) {
+  const { handle, ok, error } = module.loadMesh(noisy.positions, noisy.indices);
+  assert.equal(ok, true, error);
+  const r = module.run(handle, 'denoise', params);
+  module.freeMesh(handle);
+  assert.equal(r.ok, true, r.error);
+  return r;
+}
+
+const cases = [
+  { params: { passes: 1 }, cli: ['--passes', '1'] },
+  { params: { passes: 2, hs: 2, hr: 0.35, radius: 3, kmax: 20, eps: 0.1, vertexIterations: 8, rangeUpdate: 'sampled' },
+    cli: ['--passes', '2', '--hs', '2', '--hr', '0.35', '--radius', '3', '--kmax', '20', '--eps', '0.1', '--vertex-iterations', '8', '--range-update', 'sampled'] },
+  { params: { passes: 1, faceNormals: 'mean', rangeUpdate: 'joint' }, cli: ['--passes', '1', '--face-normals', 'mean', '--range-update', 'joint'] },
+  { params: { method: 'bilateral', normalIterations: 5, sigmaS: 0.3 }, cli: ['--method', 'bilateral', '--normal-iterations', '5', '--sigma-s', '0.3'] },
+  { params: { method: 'taubin', iterations: 4 }, cli: ['--method', 'taubin', '--taubin-iterations', '4'] },
+];
+
+for (const c of cases) {
+  test(`denoise ${JSON.stringify(c.params)}: wasm agrees with the native CLI`, () => {
+    const off = path.join(dir, 'box.off');
+    writeCoff(off, noisy);
+    const r = denoised(geoshift, c.params);
+    assertClose(assert, r.positions, runNative(dir, 'denoise', off, c.cli)('POSITION'), 'positions');
+    assert.equal(r.stats.method, c.params.method ?? 'meanshift');
+  });
+}
+
+// Distance of each vertex from the box surface (the largest coordinate's magnitude is 1 there).
+function offSurfaceRms(positions) {
+  let sum = 0;
+  for (let v = 0; v < positions.length / 3; ++v) {
+    sum += (Math.max(Math.abs(positions[3 * v]), Math.abs(positions[3 * v + 1]), Math.abs(positions[3 * v + 2])) - 1) ** 2;
+  }
+  return Math.sqrt(sum / (positions.length / 3));
+}
+
+test('the mean shift denoiser brings the noisy box back toward its sides', () => {
+  const r = denoised(geoshift, {});
+  const before = offSurfaceRms(noisy.positions);
+  const afterDenoise = offSurfaceRms(r.positions);
+  assert.ok(afterDenoise < 0.7 * before, `off-surface RMS ${before} -> ${afterDenoise}`);
+  assert.ok(r.positions.every(Number.isFinite));
+  assert.equal(r.positions.length, noisy.positions.length);
+  assert.ok(r.stats.meanIterations > 0 && r.stats.convergedFraction > 0 && r.stats.threads === 1, JSON.stringify(r.stats));
+});
+
+test('the threaded build denoises to the same bits with 1 and 4 threads, and as the single-threaded build', async () => {
+  threaded = await loadGeoshift({ threads: true });
+  const one = denoised(threaded, { passes: 2, threads: 1 });
+  const four = denoised(threaded, { passes: 2, threads: 4 });
+  const single = denoised(geoshift, { passes: 2 });
+  assert.equal(four.stats.threads, Math.min(4, os.cpus().length));
+  assert.ok(sameBits(four.positions, one.positions), '4 threads differ from 1');
+  assert.ok(sameBits(single.positions, one.positions), 'the threaded build differs from the single-threaded one');
+});
+
+test('bad denoise parameters are refused, naming what is wrong', () => {
+  const { handle } = geoshift.loadMesh(noisy.positions, noisy.indices);
+  const expectError = (params, pattern) => {
+    const r = geoshift.run(handle, 'denoise', params);
+    assert.equal(r.ok, false, `${JSON.stringify(params)} was accepted`);
+    assert.match(r.error, pattern);
+  };
+  expectError({ method: 'median' }, /parameter method = "median" is not one of meanshift, bilateral, taubin/);
+  expectError({ levels: 1 }, /denoise: wavelet levels > 0 .*not available/);
+  expectError({ method: 'taubin', hs: 3 }, /parameter hs belongs to method "meanshift"/);
+  expectError({ normalIterations: 3 }, /normalIterations belongs to method "bilateral"/);
+  expectError({ method: 'taubin', vertexIterations: 3 }, /vertexIterations does not apply/);
+  expectError({ hr: -0.1 }, /parameter hr/);
+  expectError({ passes: 0 }, /parameter passes/);
+  expectError({ radius: 'far' }, /radius must be a number/);
+  expectError({ method: 'taubin', lambda: 0.5, mu: -0.4 }, /mu|lambda/);
+  expectError({ sigma: 1 }, /unknown parameter "sigma"/);
+  // Nothing moved: a Taubin run with no iterations hands back the loaded positions.
+  const r = geoshift.run(handle, 'denoise', { method: 'taubin', iterations: 0 });
+  assert.equal(r.ok, true, r.error);
+  assert.ok(sameBits(r.positions, noisy.positions));
+  geoshift.freeMesh(handle);
+});

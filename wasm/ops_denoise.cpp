@@ -1,0 +1,111 @@
+// op "denoise": vertex positions denoised as `geoshift denoise` does it (cli/denoise.cpp): method
+// "meanshift" (the paper's 4.1, the default), "bilateral" (Zheng et al.) or "taubin" (a baseline).
+#include <string>
+#include <vector>
+
+#include "geoshift/bilateral_normal.hpp"
+#include "geoshift/denoise.hpp"
+#include "geoshift/error.hpp"
+#include "geoshift/smoothing.hpp"
+#include "ops.hpp"
+
+namespace geoshift::wasm {
+
+namespace {
+
+// Parameters that belong to one method only; given with another method they are an error, not
+// silently ignored (a user who sets h_s for Taubin smoothing expects it to matter).
+struct MethodParams {
+  const char* method;
+  std::vector<const char*> names;
+};
+
+const std::vector<MethodParams>& methodParams() {
+  static const std::vector<MethodParams> table = {
+      {"meanshift", {"hs", "hr", "radius", "kmax", "eps", "passes", "rangeUpdate", "faceNormals", "threads", "supportIterations"}},
+      {"bilateral", {"normalIterations", "sigmaC", "sigmaS", "neighbors"}},
+      {"taubin", {"iterations", "lambda", "mu"}},
+  };
+  return table;
+}
+
+void rejectOtherMethodsParams(const Params& p, const std::string& method) {
+  for (const MethodParams& m : methodParams()) {
+    if (m.method == method) continue;
+    for (const char* name : m.names)
+      if (p.has(name))
+        throw InputError(std::string("denoise: parameter ") + name + " belongs to method \"" + m.method +
+                         "\", not \"" + method + "\"");
+  }
+  if (method == "taubin" && p.has("vertexIterations"))
+    throw InputError("denoise: parameter vertexIterations does not apply to method \"taubin\"");
+}
+
+}  // namespace
+
+OpOutput runDenoise(const OpContext& context) {
+  const Params& p = context.params;
+  const std::string method = p.choice("method", "meanshift", {"meanshift", "bilateral", "taubin"});
+  rejectOtherMethodsParams(p, method);
+  // The hybrid filter (denoise a wavelet-coarsened mesh, add the details back) has no core
+  // function yet; the Denoise preset sends levels 0 and alpha 1, which mean "off".
+  const int levels = p.integer("levels", 0, 0, 64);
+  p.number("alpha", 1, -100, 100);
+  if (levels > 0)
+    throw InputError("denoise: wavelet levels > 0 (the hybrid filter) are not available in this build yet; set levels to 0");
+
+  Mesh mesh = context.session.build.mesh;
+  OpOutput out;
+  out.stats.set("method", method);
+  if (method == "meanshift") {
+    DenoiseOptions o;
+    MeanShiftOptions& ms = o.meanShift;
+    o.passes = p.integer("passes", o.passes, 1, 10000);
+    ms.spatialBandwidth = p.number("hs", ms.spatialBandwidth, 1e-6, 1e6);
+    ms.rangeBandwidth = p.number("hr", ms.rangeBandwidth, 1e-12, 1e12);
+    ms.radius = p.number("radius", ms.radius, 0, 1e6);
+    ms.maxIterations = p.integer("kmax", ms.maxIterations, 1, 1000000);
+    ms.epsilon = p.number("eps", ms.epsilon, 1e-9, 1e6);
+    // Defaults are the core's (the paper's sampled update, the consensus face rule), as in the CLI.
+    if (p.has("rangeUpdate"))
+      ms.rangeUpdate = p.choice("rangeUpdate", "sampled", {"joint", "sampled"}) == "sampled" ? RangeUpdate::Sampled
+                                                                                             : RangeUpdate::Joint;
+    if (p.has("faceNormals"))
+      o.faceNormals = p.choice("faceNormals", "consensus", {"consensus", "mean"}) == "mean" ? FaceNormalRule::Mean
+                                                                                           : FaceNormalRule::Consensus;
+    ms.parallel.threads = context.threads(p.integer("threads", 0, 0, 1024));
+    o.support.iterations = p.integer("supportIterations", o.support.iterations, 0, 1000000);
+    o.vertexUpdate.iterations = p.integer("vertexIterations", o.vertexUpdate.iterations, 0, 1000000);
+    const DenoiseResult r = denoise(mesh, o, context.progress);
+    out.stats.set("passes", o.passes);
+    out.stats.set("meanIterations", r.meanIterations);
+    out.stats.set("convergedFraction", r.convergedFraction);
+    out.stats.set("limitedSteps", r.limitedSteps);
+    out.stats.set("threads", r.threads);
+    out.stats.set("ms", r.seconds * 1000);
+  } else if (method == "bilateral") {
+    BilateralNormalOptions o;
+    o.normalIterations = p.integer("normalIterations", o.normalIterations, 0, 1000000);
+    o.sigmaSpatial = p.number("sigmaC", o.sigmaSpatial, 0, 1e6);
+    o.sigmaRange = p.number("sigmaS", o.sigmaRange, 1e-12, 1e6);
+    o.neighborhood = p.choice("neighbors", "vertex", {"vertex", "edge"}) == "edge" ? FaceNeighborhood::Edge
+                                                                                   : FaceNeighborhood::Vertex;
+    o.vertexUpdate.iterations = p.integer("vertexIterations", o.vertexUpdate.iterations, 0, 1000000);
+    const BilateralNormalResult r = bilateralNormalDenoise(mesh, o, context.progress);
+    out.stats.set("iterations", o.normalIterations);
+    out.stats.set("limitedSteps", r.vertexUpdate.limitedSteps);
+    out.stats.set("threads", 1);
+  } else {
+    TaubinOptions o;
+    o.iterations = p.integer("iterations", o.iterations, 0, 1000000);
+    o.lambda = p.number("lambda", o.lambda, -10, 10);
+    o.mu = p.number("mu", o.mu, -10, 10);
+    taubinSmooth(mesh, o, context.progress);
+    out.stats.set("iterations", o.iterations);
+    out.stats.set("threads", 1);
+  }
+  out.positions = mesh.positions();
+  return out;
+}
+
+}  // namespace geoshift::wasm
