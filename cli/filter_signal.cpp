@@ -7,32 +7,12 @@
 
 #include "geoshift/curvature.hpp"
 #include "geoshift/error.hpp"
+#include "geoshift/presets.hpp"
 #include "geoshift/geometry.hpp"
 
 namespace geoshift::cli {
 
 namespace {
-
-std::vector<std::string> splitNames(const std::string& list) {
-  std::vector<std::string> names;
-  std::stringstream s(list);
-  for (std::string name; std::getline(s, name, ',');)
-    if (!name.empty()) names.push_back(name);
-  return names;
-}
-
-// A tenth of the 10–90% spread: a scalar's own scale when the user gave no h_r.
-double spreadBandwidth(std::vector<double> values, int dim) {
-  if (values.empty()) return 1;
-  double widest = 0;
-  for (int d = 0; d < dim; ++d) {
-    std::vector<double> column;
-    for (size_t i = d; i < values.size(); i += dim) column.push_back(values[i]);
-    std::sort(column.begin(), column.end());
-    widest = std::max(widest, column[column.size() * 9 / 10] - column[column.size() / 10]);
-  }
-  return widest > 0 ? widest / 10 : 1;
-}
 
 const ExtraAttribute* findExtra(const MeshPart& part, const std::string& name) {
   for (const ExtraAttribute& e : part.extras)
@@ -57,7 +37,7 @@ void FilterSummary::add(const MeanShiftResult& r, int n) {
 }
 
 std::string missingSignal(const Document& doc, const MeshPart& part, const FilterSettings& settings) {
-  for (const std::string& name : splitNames(settings.signal)) {
+  for (const std::string& name : splitSignalNames(settings.signal)) {
     if (name == "color" && part.colors.empty()) return doc.path + ": " + part.label + " has no vertex colors (COLOR_0)";
     if (name == "terrain" && !findExtra(part, "_HEIGHT_ABOVE_GROUND") && !findExtra(part, "_VEGETATION_HEIGHT") &&
         !findExtra(part, "_CLASS"))
@@ -77,7 +57,7 @@ HybridResult filterPart(const Document& doc, MeshPart& part, const MeshBuild& bu
   options.channels.clear();
   std::vector<Source> sources;
 
-  std::vector<std::string> names = splitNames(settings.signal);
+  std::vector<std::string> names = splitSignalNames(settings.signal);
   if (names.size() == 1 && names[0] == "terrain") {
     names.clear();
     for (const char* candidate : {"_HEIGHT_ABOVE_GROUND", "_VEGETATION_HEIGHT"})

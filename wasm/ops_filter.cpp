@@ -7,6 +7,7 @@
 
 #include "geoshift/curvature.hpp"
 #include "geoshift/error.hpp"
+#include "geoshift/presets.hpp"
 #include "geoshift/geometry.hpp"
 #include "geoshift/hybrid.hpp"
 #include "ops.hpp"
@@ -14,27 +15,6 @@
 namespace geoshift::wasm {
 
 namespace {
-
-std::vector<std::string> splitNames(const std::string& list) {
-  std::vector<std::string> names;
-  std::stringstream s(list);
-  for (std::string name; std::getline(s, name, ',');)
-    if (!name.empty()) names.push_back(name);
-  return names;
-}
-
-// The CLI's default h_r for a scalar signal: a tenth of its widest 10–90% spread over the channels.
-double spreadBandwidth(const std::vector<double>& values, int dim) {
-  if (values.empty()) return 1;
-  double widest = 0;
-  for (int d = 0; d < dim; ++d) {
-    std::vector<double> column;
-    for (std::size_t i = d; i < values.size(); i += dim) column.push_back(values[i]);
-    std::sort(column.begin(), column.end());
-    widest = std::max(widest, column[column.size() * 9 / 10] - column[column.size() / 10]);
-  }
-  return widest > 0 ? widest / 10 : 1;
-}
 
 bool sameIgnoringCase(const std::string& a, const std::string& b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
@@ -112,7 +92,7 @@ OpOutput runFilter(const OpContext& context) {
   const bool rangeGiven = p.has("hr");
   const double hr = p.number("hr", 0.1, 1e-12, 1e12);
 
-  std::vector<std::string> names = expandTerrain(s, splitNames(p.text("signal", "color")));
+  std::vector<std::string> names = expandTerrain(s, splitSignalNames(p.text("signal", "color")));
   if (names.empty()) throw InputError("filter: parameter signal names no attribute");
 
   AttributeSet set(mesh.vertexCount());

@@ -1,5 +1,8 @@
 #include "geoshift/presets.hpp"
 
+#include <algorithm>
+#include <sstream>
+
 #include "geoshift/error.hpp"
 
 namespace geoshift {
@@ -23,6 +26,26 @@ FilterPreset make(std::string name, std::string description, std::string signal,
 }
 
 }  // namespace
+
+std::vector<std::string> splitSignalNames(const std::string& list) {
+  std::vector<std::string> names;
+  std::stringstream s(list);
+  for (std::string name; std::getline(s, name, ',');)
+    if (!name.empty()) names.push_back(name);
+  return names;
+}
+
+double spreadBandwidth(const std::vector<double>& values, int dim) {
+  if (values.empty() || dim < 1) return 1;
+  double widest = 0;
+  for (int d = 0; d < dim; ++d) {
+    std::vector<double> column;
+    for (size_t i = d; i < values.size(); i += dim) column.push_back(values[i]);
+    std::sort(column.begin(), column.end());
+    widest = std::max(widest, column[column.size() * 9 / 10] - column[column.size() / 10]);
+  }
+  return widest > 0 ? widest / 10 : 1;
+}
 
 const std::vector<FilterPreset>& filterPresets() {
   // Terrain values are the paper's §4.2.1 (its BMS line prints h_s and h_r swapped; §0.4), the

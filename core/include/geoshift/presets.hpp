@@ -17,6 +17,13 @@ struct FilterPreset {
   double detailGain = 1;    // α for every level of the hybrid filter
 };
 
+// "color,_HEIGHT" -> {"color", "_HEIGHT"}: the signal list of `filter` (empty names dropped).
+std::vector<std::string> splitSignalNames(const std::string& list);
+
+// The default h_r of a scalar signal given without one: a tenth of its widest 10–90% spread over
+// the `dim` channels of `values` (rows of dim), 1 when that spread is 0.
+double spreadBandwidth(const std::vector<double>& values, int dim);
+
 // color, curvature-ms, curvature-bms, terrain-ms, terrain-bms.
 const std::vector<FilterPreset>& filterPresets();
 // Throws InputError listing the known names.
