@@ -44,6 +44,8 @@ DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress&
     ms.passes = 1;
     const int n = mesh.vertexCount();
     double iterations = 0;
+    VertexUpdateOptions update = options.vertexUpdate;
+    if (update.referenceNormals.empty()) update.referenceNormals = faceNormals(mesh);  // the input's, every pass
     for (int pass = 0; pass < options.passes; ++pass) {
       const double from = 0.02 + 0.98 * pass / options.passes, to = 0.02 + 0.98 * (pass + 1) / options.passes;
       std::vector<double> flat;
@@ -65,9 +67,11 @@ DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress&
       progress.step(from + 0.8 * (to - from), "vertex update");
       const std::vector<Vec3> targets = options.faceNormals == FaceNormalRule::Mean
                                             ? faceNormalsFromVertexNormals(mesh, normals)
-                                            : consensusFaceNormals(mesh, normals, ms.rangeBandwidth);
+                                            : consensusFaceNormals(mesh, normals,
+                                                                   options.consensusBandwidth > 0 ? options.consensusBandwidth
+                                                                                                  : ms.rangeBandwidth);
       const VertexUpdateResult u = updateVertices(mesh, targets,
-                                                  options.vertexUpdate, progress.slice(from + 0.8 * (to - from), to));
+                                                  update, progress.slice(from + 0.8 * (to - from), to));
       result.limitedSteps += u.limitedSteps;
       mesh.positions() = u.positions;
     }

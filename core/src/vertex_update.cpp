@@ -65,7 +65,10 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
     pinned[v] = mesh.isIsolated(v) || (options.fixedBoundary && mesh.isBoundaryVertex(v));
 
   // The reference each face must stay on the positive side of (zero for degenerate input faces).
-  std::vector<Vec3> inputNormal = faceNormals(mesh);
+  if (!options.referenceNormals.empty() && options.referenceNormals.size() != static_cast<size_t>(mesh.faceCount()))
+    throw InputError("vertex update: " + std::to_string(options.referenceNormals.size()) + " reference normals for " +
+                     std::to_string(mesh.faceCount()) + " faces");
+  std::vector<Vec3> inputNormal = options.referenceNormals.empty() ? faceNormals(mesh) : options.referenceNormals;
 
   VertexUpdateResult result;
   std::vector<Vec3> x = mesh.positions(), candidate = x, step(nv), accum(nv);

@@ -64,9 +64,9 @@ int flippedFaces(const Mesh& before, const Mesh& after) {
 
 }  // namespace
 
-// The uniform reading of the paper's noise, |d| in [0, 0.5 AEL], on a 12×12×12 block. The issue's
-// target of 10° at the edges is not reached: the default lands at about 12° (from 21° noisy);
-// the paper's face-normal rule (FaceNormalRule::Mean) bevels the edges to about 46°.
+// The uniform reading of the paper's noise, |d| in [0, 0.5 AEL], on a 12×12×12 block. The default
+// lands at about 6° of feature dihedral error (21° noisy); the paper's face-normal rule
+// (FaceNormalRule::Mean) bevels the edges to about 46°.
 TEST_CASE("denoising a noisy CAD block halves the error and sharpens its edges", "[denoise]") {
   const Mesh clean = build(shapes::box(12, 12, 12));
   const Mesh noisy = withNoise(clean, 0.5, NoiseDistribution::Uniform);
@@ -82,8 +82,9 @@ TEST_CASE("denoising a noisy CAD block halves the error and sharpens its edges",
                                                                    << edges << "°, " << r.meanIterations << " iterations");
     REQUIRE(after < 0.5 * noisyRms);
     REQUIRE(edges < noisyEdges);
-    if (update == RangeUpdate::Sampled) REQUIRE(edges < 15);  // the default
-    REQUIRE(flippedFaces(clean, m) <= m.faceCount() / 500);
+    if (update == RangeUpdate::Sampled) REQUIRE(edges < 10);  // the default
+    REQUIRE(flippedFaces(noisy, m) == 0);  // never, across all passes
+    REQUIRE(flippedFaces(clean, m) <= m.faceCount() / 200);  // faces the noise folded may stay folded
     REQUIRE(r.convergedFraction > 0.9);
   }
   // The paper's face-normal rule bevels: the consensus rule is what keeps the edges.
@@ -101,7 +102,7 @@ TEST_CASE("denoising a noisy sphere halves the error", "[denoise]") {
   denoise(m);
   INFO("RMS " << rmsTo(noisy, clean) << " -> " << rmsTo(m, clean));
   REQUIRE(rmsTo(m, clean) < 0.5 * rmsTo(noisy, clean));
-  REQUIRE(flippedFaces(clean, m) == 0);
+  REQUIRE(flippedFaces(noisy, m) == 0);
 }
 
 TEST_CASE("denoising a clean plane leaves it planar", "[denoise]") {

@@ -21,6 +21,8 @@ enum class FaceNormalRule {
 struct DenoiseOptions {
   int passes = 3;
   FaceNormalRule faceNormals = FaceNormalRule::Consensus;
+  // Bandwidth of the consensus weights (chord length between unit normals); 0: the mean shift's h_r.
+  double consensusBandwidth = 0.25;
   // The mean shift of the normals. Defaults are the paper's: r = 4 AEL, h_s = 3 AEL, h_r = 0.45,
   // k_max = 50, ε = AEL/5, kernel eq. 8 (set by denoise(); `channels` is ignored).
   MeanShiftOptions meanShift = paperMeanShift();

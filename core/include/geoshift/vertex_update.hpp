@@ -22,6 +22,10 @@ struct VertexUpdateOptions {
   // Boundary vertices stay where they are (otherwise they move like the others).
   bool fixedBoundary = false;
   FlipGuard flipGuard = FlipGuard::Input;
+  // What "the input" of the guard is: empty, the mesh's face normals at the call; else one normal
+  // per face (a denoiser running several passes gives the normals of its own input, so that no
+  // face ends up flipped against the mesh it was given, however many passes).
+  std::vector<Vec3> referenceNormals;
 };
 
 struct VertexUpdateResult {
