@@ -28,7 +28,13 @@ TEST_CASE("cli: denoise removes noise with every method and says what it did", "
   const double noisy = rmsToClean(dir / "noisy.off", dir / "clean.off");
   REQUIRE(noisy > 0);
 
-  Run r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "bilateral.off"));
+  // The default method is the Riemannian mean shift (the paper's settings).
+  Run r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "meanshift.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("denoise meanshift: 594 vertices in 1 part"));
+  CHECK(rmsToClean(dir / "meanshift.off", dir / "clean.off") < 0.6 * noisy);
+
+  r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "bilateral.off") + " --method bilateral");
   REQUIRE(r.code == 0);
   CHECK_THAT(r.err, Catch::Contains("denoise bilateral: 594 vertices in 1 part"));
   CHECK_THAT(r.err, Catch::Contains(" ms"));
