@@ -103,6 +103,11 @@ Command addDenoise(CLI::App& app) {
       ->check(CLI::IsMember({"sampled", "joint"}));
   sub->add_option("--threads", ms.parallel.threads, "meanshift: worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
+  sub->add_option("--levels", a->meanShift.levels,
+                  "meanshift: wavelet levels; denoise the coarse mesh and restore the details times --alpha")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  sub->add_option("--alpha", a->meanShift.alpha, "meanshift: detail gain per level (finest first) or one for all")
+      ->delimiter(',');
   sub->add_option("--face-normals", a->faceRule,
                   "meanshift: consensus (default: corners that disagree with the face drop out) or mean (the paper)")
       ->check(CLI::IsMember({"consensus", "mean"}));

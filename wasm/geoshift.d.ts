@@ -106,7 +106,8 @@ export interface OpParams {
    * rangeUpdate defaults to 'sampled' here (the paper's), faceNormals to 'consensus'.
    * bilateral: normalIterations, sigmaC (AEL, 0 = automatic), sigmaS, neighbors. taubin:
    * iterations, lambda, mu. A parameter of another method than the chosen one is an error.
-   * levels must be 0 (the core has no hybrid denoiser); alpha is accepted and unused then.
+   * levels > 0 (meanshift only): denoise a mesh coarsened that many wavelet levels and add the
+   * details back times alpha (default 0).
    */
   denoise: {
     method?: 'meanshift' | 'bilateral' | 'taubin';

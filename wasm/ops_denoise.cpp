@@ -47,18 +47,20 @@ OpOutput runDenoise(const OpContext& context) {
   const Params& p = context.params;
   const std::string method = p.choice("method", "meanshift", {"meanshift", "bilateral", "taubin"});
   rejectOtherMethodsParams(p, method);
-  // The hybrid filter (denoise a wavelet-coarsened mesh, add the details back) has no core
-  // function yet; the Denoise preset sends levels 0 and alpha 1, which mean "off".
+  // levels > 0: the hybrid denoiser (denoise a wavelet-coarsened mesh, add the details back times
+  // alpha), for the mean shift only, as in the CLI.
   const int levels = p.integer("levels", 0, 0, 64);
-  p.number("alpha", 1, -100, 100);
-  if (levels > 0)
-    throw InputError("denoise: wavelet levels > 0 (the hybrid filter) are not available in this build yet; set levels to 0");
+  const double alpha = p.number("alpha", 0, -100, 100);
+  if (levels > 0 && method != "meanshift")
+    throw InputError("denoise: wavelet levels apply to method \"meanshift\" only");
 
   Mesh mesh = context.session.build.mesh;
   OpOutput out;
   out.stats.set("method", method);
   if (method == "meanshift") {
     DenoiseOptions o;
+    o.levels = levels;
+    o.alpha = {alpha};
     MeanShiftOptions& ms = o.meanShift;
     o.passes = p.integer("passes", o.passes, 1, 10000);
     ms.spatialBandwidth = p.number("hs", ms.spatialBandwidth, 1e-6, 1e6);

@@ -10,6 +10,8 @@ namespace geoshift {
 
 namespace {
 
+DenoiseResult denoiseDirect(Mesh& mesh, const DenoiseOptions& options, const Progress& progress);
+
 // FaceNormalRule::Consensus (denoise.hpp).
 std::vector<Vec3> consensusFaceNormals(const Mesh& mesh, const std::vector<Vec3>& vertexNormals, double bandwidth) {
   const std::vector<Vec3> own = faceNormals(mesh);
@@ -28,6 +30,26 @@ std::vector<Vec3> consensusFaceNormals(const Mesh& mesh, const std::vector<Vec3>
 }  // namespace
 
 DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress& progress) {
+  if (options.levels < 0) throw InputError("denoise: levels must be >= 0 (got " + std::to_string(options.levels) + ")");
+  if (options.levels == 0) return denoiseDirect(mesh, options, progress);
+  const auto start = std::chrono::steady_clock::now();
+  WaveletOptions w = options.wavelet;
+  w.levels = options.levels;
+  const Multiresolution mr = analyze(mesh, AttributeSet(mesh.vertexCount()), w, progress.slice(0, 0.05));
+  Mesh coarse = mr.coarse;
+  DenoiseOptions direct = options;
+  direct.levels = 0;
+  DenoiseResult result = denoiseDirect(coarse, direct, progress.slice(0.05, 0.95));
+  const SynthesisResult fine = synthesize(mr, coarse.positions(), mr.coarseAttributes, options.alpha, progress.slice(0.95, 1));
+  mesh.positions() = fine.mesh.positions();
+  result.filteredVertices = coarse.vertexCount();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+namespace {
+
+DenoiseResult denoiseDirect(Mesh& mesh, const DenoiseOptions& options, const Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   if (options.passes < 1) throw InputError("denoise: passes must be at least 1 (got " + std::to_string(options.passes) + ")");
   if (mesh.faceCount() == 0) throw InputError("denoise: the mesh has no faces");
@@ -81,7 +103,9 @@ DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress&
     throw;
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.filteredVertices = mesh.vertexCount();
   return result;
 }
 
+}  // namespace
 }  // namespace geoshift

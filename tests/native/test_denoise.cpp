@@ -105,6 +105,23 @@ TEST_CASE("denoising a noisy sphere halves the error", "[denoise]") {
   REQUIRE(flippedFaces(noisy, m) == 0);
 }
 
+TEST_CASE("hybrid denoising: the coarse mesh is denoised, the details dropped", "[denoise][hybrid]") {
+  const Mesh clean = build(shapes::icosphere(5));
+  const Mesh noisy = withNoise(clean, 0.5, NoiseDistribution::Uniform, 8);
+  Mesh m = noisy;
+  DenoiseOptions o;
+  o.levels = 2;
+  o.alpha = {0};
+  const DenoiseResult r = denoise(m, o);
+  INFO("RMS " << rmsTo(noisy, clean) << " -> " << rmsTo(m, clean) << " filtering " << r.filteredVertices << " vertices");
+  REQUIRE(m.vertexCount() == clean.vertexCount());
+  REQUIRE(r.filteredVertices < 0.65 * clean.vertexCount());
+  REQUIRE(rmsTo(m, clean) < 0.5 * rmsTo(noisy, clean));
+  o.levels = 2;
+  o.alpha = {0, 0, 0};  // three gains for two levels
+  REQUIRE_THROWS_AS(denoise(m, o), InputError);
+}
+
 TEST_CASE("denoising a clean plane leaves it planar", "[denoise]") {
   Mesh m = build(shapes::grid(20, 0.3));
   denoise(m);

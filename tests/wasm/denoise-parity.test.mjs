@@ -87,7 +87,7 @@ test('bad denoise parameters are refused, naming what is wrong', () => {
     assert.match(r.error, pattern);
   };
   expectError({ method: 'median' }, /parameter method = "median" is not one of meanshift, bilateral, taubin/);
-  expectError({ levels: 1 }, /denoise: wavelet levels > 0 .*not available/);
+  expectError({ method: 'bilateral', levels: 1 }, /levels apply to method "meanshift" only/);
   expectError({ method: 'taubin', hs: 3 }, /parameter hs belongs to method "meanshift"/);
   expectError({ normalIterations: 3 }, /normalIterations belongs to method "bilateral"/);
   expectError({ method: 'taubin', vertexIterations: 3 }, /vertexIterations does not apply/);

@@ -7,6 +7,7 @@
 #include "geoshift/mean_shift.hpp"
 #include "geoshift/smoothing.hpp"
 #include "geoshift/vertex_update.hpp"
+#include "geoshift/wavelet.hpp"
 
 namespace geoshift {
 
@@ -27,6 +28,12 @@ struct DenoiseOptions {
   // k_max = 50, ε = AEL/5, kernel eq. 8 (set by denoise(); `channels` is ignored).
   MeanShiftOptions meanShift = paperMeanShift();
   TaubinOptions support;            // smoothing of the support copy (MeshLab's 10 λ|μ steps)
+  // Hybrid denoising (Algorithm 2 on positions): analyse `levels` wavelet levels, denoise the coarse
+  // mesh, synthesise with detail gain `alpha` (one for all levels or one per level; 0 drops the
+  // fine details with their noise). The no-flip guarantee then holds on the coarse mesh.
+  int levels = 0;
+  std::vector<double> alpha = {0};
+  WaveletOptions wavelet;
   VertexUpdateOptions vertexUpdate; // 20 iterations, no face ever flipped relative to the input
 
   static MeanShiftOptions paperMeanShift() {
@@ -50,6 +57,7 @@ struct DenoiseResult {
   double convergedFraction = 0;  // of the last pass
   int limitedSteps = 0;          // vertex-update steps the flip guard shortened, all passes
   int threads = 1;
+  int filteredVertices = 0;      // the mesh's, or the coarse mesh's with levels > 0
   double seconds = 0;
 };
 
