@@ -115,12 +115,13 @@ export const PRESETS: Preset[] = [
     ],
   },
   {
-    id: 'terrain', name: 'Terrain', op: 'filter', needsScalar: true, showsScalar: '_filtered',
+    // The filtered attribute comes back under its own name, the first scalar of the result.
+    id: 'terrain', name: 'Terrain', op: 'filter', needsScalar: true,
     summary: 'Smooths a per-vertex attribute of a terrain (height, vegetation height, class) along the ground.',
     params: [
       mode('bms'), hs(5),
       num('hr', 'Value tolerance h_r', 'attribute units', 5, 0.01, 1000, 0.01, 'How different two attribute values may be and still be averaged.'),
-      radius(15), kmax(5), eps(0.2), passes(10), rangeUpdate, levels(6), alpha(1), segments,
+      radius(15), kmax(5), eps(0.2), passes(10), rangeUpdate, levels(6), alpha(0), segments,
     ],
   },
   {
