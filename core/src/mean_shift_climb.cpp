@@ -28,24 +28,25 @@ void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
   // Counting sort by cell; within a cell the log map's order (by distance) is kept.
   chart.cellStart.assign(static_cast<size_t>(chart.side) * chart.side + 1, 0);
   order_.resize(n);
-  std::vector<double>& xs = chart.x;
-  std::vector<double>& ys = chart.y;
-  xs.resize(n);
-  ys.resize(n);
+  scratchX_.resize(n);
+  scratchY_.resize(n);
   for (size_t e = 0; e < n; ++e) {
-    const double x = entries[e].distance * std::cos(entries[e].angle), y = entries[e].distance * std::sin(entries[e].angle);
-    const int c = cellOf(y) * chart.side + cellOf(x);
+    scratchX_[e] = entries[e].distance * std::cos(entries[e].angle);
+    scratchY_[e] = entries[e].distance * std::sin(entries[e].angle);
+    const int c = cellOf(scratchY_[e]) * chart.side + cellOf(scratchX_[e]);
     order_[e] = c;
     ++chart.cellStart[c + 1];
   }
   for (size_t c = 1; c < chart.cellStart.size(); ++c) chart.cellStart[c] += chart.cellStart[c - 1];
-  std::vector<int> fill(chart.cellStart.begin(), chart.cellStart.end() - 1);
+  fill_.assign(chart.cellStart.begin(), chart.cellStart.end() - 1);
   chart.vertex.resize(n);
+  chart.x.resize(n);
+  chart.y.resize(n);
   for (size_t e = 0; e < n; ++e) {
-    const int at = fill[order_[e]]++;
+    const int at = fill_[order_[e]]++;
     chart.vertex[at] = entries[e].vertex;
-    xs[at] = entries[e].distance * std::cos(entries[e].angle);
-    ys[at] = entries[e].distance * std::sin(entries[e].angle);
+    chart.x[at] = scratchX_[e];
+    chart.y[at] = scratchY_[e];
   }
 }
 

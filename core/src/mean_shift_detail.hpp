@@ -94,7 +94,8 @@ class Climber {
   LogMap logMap;
 
  private:
-  std::vector<int> order_;  // scratch of chartAt
+  std::vector<int> order_, fill_;         // scratch of chartAt: cell of each entry, next slot of each cell
+  std::vector<double> scratchX_, scratchY_;  // and its coordinates, in log-map order
   void chartAt(Chart& chart, const SurfacePoint& base, double radius);
   // The range value of the signal at p (barycentric; unit vectors re-normalised).
   void sample(const std::vector<double>& signal, const SurfacePoint& p, double* y) const;

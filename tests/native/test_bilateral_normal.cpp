@@ -13,44 +13,15 @@
 #include "geoshift/metrics.hpp"
 #include "geoshift/noise.hpp"
 #include "geoshift/shapes.hpp"
+#include "denoise_support.hpp"
 #include "support.hpp"
 
 using namespace geoshift;
+using namespace geoshift::test;
 
 namespace {
 
 Mesh build(const TriangleSoup& soup) { return buildMesh(soup).mesh; }
-
-Mesh withNoise(const Mesh& clean, double amount, std::uint64_t seed = 1,
-               NoiseDistribution distribution = NoiseDistribution::Fixed) {
-  Mesh m = clean;
-  NoiseOptions o;
-  o.amount = amount;
-  o.distribution = distribution;
-  o.seed = seed;
-  addNoise(m, o);
-  return m;
-}
-
-double rmsTo(const Mesh& result, const Mesh& clean) { return pointToSurface(result.positions(), clean).rms; }
-
-double degrees(const Vec3& a, const Vec3& b) {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-}
-
-// For every edge where the clean mesh bends by more than 30°: |dihedral(result) − dihedral(clean)|.
-std::vector<double> featureEdgeErrors(const Mesh& clean, const Mesh& result) {
-  const std::vector<Vec3> nc = faceNormals(clean), nr = faceNormals(result);
-  std::vector<double> errors;
-  for (int h = 0; h < clean.halfedgeCount(); ++h) {
-    const int t = clean.twin(h);
-    if (t <= h) continue;
-    const int f = Mesh::faceOf(h), g = Mesh::faceOf(t);
-    const double bend = degrees(nc[f], nc[g]);
-    if (bend > 30) errors.push_back(std::abs(degrees(nr[f], nr[g]) - bend));
-  }
-  return errors;
-}
 
 }  // namespace
 

@@ -14,53 +14,14 @@
 #include "geoshift/metrics.hpp"
 #include "geoshift/noise.hpp"
 #include "geoshift/shapes.hpp"
+#include "denoise_support.hpp"
 
 using namespace geoshift;
+using namespace geoshift::test;
 
 namespace {
 
 Mesh build(const TriangleSoup& soup) { return buildMesh(soup).mesh; }
-
-Mesh withNoise(const Mesh& clean, double amount, NoiseDistribution distribution, std::uint64_t seed = 3) {
-  Mesh m = clean;
-  NoiseOptions o;
-  o.amount = amount;
-  o.distribution = distribution;
-  o.seed = seed;
-  addNoise(m, o);
-  return m;
-}
-
-double rmsTo(const Mesh& result, const Mesh& clean) { return pointToSurface(result.positions(), clean).rms; }
-
-double degrees(const Vec3& a, const Vec3& b) {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-}
-
-// Mean |dihedral(result) − dihedral(clean)| over the edges where the clean mesh bends by > 30°.
-double featureEdgeError(const Mesh& clean, const Mesh& result) {
-  const std::vector<Vec3> nc = faceNormals(clean), nr = faceNormals(result);
-  double sum = 0;
-  int count = 0;
-  for (int h = 0; h < clean.halfedgeCount(); ++h) {
-    const int t = clean.twin(h);
-    if (t <= h) continue;
-    const int f = Mesh::faceOf(h), g = Mesh::faceOf(t);
-    const double bend = degrees(nc[f], nc[g]);
-    if (bend <= 30) continue;
-    sum += std::abs(degrees(nr[f], nr[g]) - bend);
-    ++count;
-  }
-  return count ? sum / count : 0;
-}
-
-int flippedFaces(const Mesh& before, const Mesh& after) {
-  const std::vector<Vec3> a = faceNormals(before), b = faceNormals(after);
-  int flipped = 0;
-  for (size_t f = 0; f < a.size(); ++f)
-    if (a[f].dot(b[f]) <= 0) ++flipped;
-  return flipped;
-}
 
 }  // namespace
 
@@ -69,14 +30,14 @@ int flippedFaces(const Mesh& before, const Mesh& after) {
 // (FaceNormalRule::Mean) bevels the edges to about 46°.
 TEST_CASE("denoising a noisy CAD block halves the error and sharpens its edges", "[denoise]") {
   const Mesh clean = build(shapes::box(12, 12, 12));
-  const Mesh noisy = withNoise(clean, 0.5, NoiseDistribution::Uniform);
-  const double noisyRms = rmsTo(noisy, clean), noisyEdges = featureEdgeError(clean, noisy);
+  const Mesh noisy = withNoise(clean, 0.5, 3, NoiseDistribution::Uniform);
+  const double noisyRms = rmsTo(noisy, clean), noisyEdges = meanFeatureEdgeError(clean, noisy);
   for (RangeUpdate update : {RangeUpdate::Sampled, RangeUpdate::Joint}) {
     Mesh m = noisy;
     DenoiseOptions o;
     o.meanShift.rangeUpdate = update;
     const DenoiseResult r = denoise(m, o);
-    const double after = rmsTo(m, clean), edges = featureEdgeError(clean, m);
+    const double after = rmsTo(m, clean), edges = meanFeatureEdgeError(clean, m);
     INFO((update == RangeUpdate::Joint ? "joint" : "sampled") << ": RMS " << noisyRms << " -> " << after
                                                                    << ", feature dihedral error " << noisyEdges << " -> "
                                                                    << edges << "°, " << r.meanIterations << " iterations");
@@ -92,12 +53,12 @@ TEST_CASE("denoising a noisy CAD block halves the error and sharpens its edges",
   DenoiseOptions o;
   o.faceNormals = FaceNormalRule::Mean;
   denoise(paper, o);
-  REQUIRE(featureEdgeError(clean, paper) > 30);
+  REQUIRE(meanFeatureEdgeError(clean, paper) > 30);
 }
 
 TEST_CASE("denoising a noisy sphere halves the error", "[denoise]") {
   const Mesh clean = build(shapes::icosphere(4));
-  const Mesh noisy = withNoise(clean, 0.5, NoiseDistribution::Uniform, 5);
+  const Mesh noisy = withNoise(clean, 0.5, 5, NoiseDistribution::Uniform);
   Mesh m = noisy;
   denoise(m);
   INFO("RMS " << rmsTo(noisy, clean) << " -> " << rmsTo(m, clean));
@@ -107,7 +68,7 @@ TEST_CASE("denoising a noisy sphere halves the error", "[denoise]") {
 
 TEST_CASE("hybrid denoising: the coarse mesh is denoised, the details dropped", "[denoise][hybrid]") {
   const Mesh clean = build(shapes::icosphere(5));
-  const Mesh noisy = withNoise(clean, 0.5, NoiseDistribution::Uniform, 8);
+  const Mesh noisy = withNoise(clean, 0.5, 8, NoiseDistribution::Uniform);
   Mesh m = noisy;
   DenoiseOptions o;
   o.levels = 2;
@@ -129,7 +90,7 @@ TEST_CASE("denoising a clean plane leaves it planar", "[denoise]") {
 }
 
 TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "[denoise]") {
-  Mesh m = withNoise(build(shapes::icosphere(3)), 0.3, NoiseDistribution::Fixed);
+  Mesh m = withNoise(build(shapes::icosphere(3)), 0.3, 3);
   const std::vector<Vec3> before = m.positions();
   DenoiseOptions bad;
   bad.passes = 0;
