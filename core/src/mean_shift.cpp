@@ -105,6 +105,18 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
   }
   s.kmax = o.maxIterations;
   s.joint = o.rangeUpdate == RangeUpdate::Joint;
+  // The specialised kernel loops: Gaussian range kernels on up to 4 dimensions (Euclidean updates
+  // when joint), or one normal-similarity channel with sampled updates.
+  bool gaussian = s.width <= 4, unit = false;
+  for (const Channel& c : s.channels) {
+    gaussian = gaussian && c.kernel == RangeKernel::Gaussian;
+    unit = unit || c.unit;
+    for (int d = 0; d < c.dim; ++d) s.coef.push_back(c.invTwoHr2);
+  }
+  if (gaussian && !(s.joint && unit))
+    s.loop = Setup::Loop::Gaussian;
+  else if (s.channels.size() == 1 && s.width == 3 && s.channels[0].kernel == RangeKernel::NormalSimilarity && !s.joint)
+    s.loop = Setup::Loop::Similarity;
   // Range changes count as converged below (ε/h_s)² in units of h_r: the same relative tolerance.
   s.rangeTolerance2 = (s.eps / s.hs) * (s.eps / s.hs);
   return s;

@@ -19,7 +19,7 @@ void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
   chart.base = base;
   const std::vector<LogMapEntry>& entries = logMap.compute(base, radius);
   const size_t n = entries.size();
-  chart.cell = 0.25 * s_.r;
+  chart.cell = 0.125 * s_.r;
   chart.side = std::max(1, static_cast<int>(std::ceil(2 * radius / chart.cell)) + 1);
   chart.origin = -radius;
   const auto cellOf = [&](double x) {
@@ -66,6 +66,7 @@ Chart Climber::anchorChart(int vertex) {
 void Climber::useAnchor(const Chart& chart) {
   clearAnchor();
   anchor_ = &chart;
+  anchorGathered_ = false;
   for (size_t e = 0; e < chart.vertex.size(); ++e) slot_[chart.vertex[e]] = static_cast<int>(e);
 }
 
@@ -73,6 +74,7 @@ void Climber::clearAnchor() {
   if (!anchor_) return;
   for (int v : anchor_->vertex) slot_[v] = -1;
   anchor_ = nullptr;
+  anchorGathered_ = false;
 }
 
 void Climber::sample(const std::vector<double>& signal, const SurfacePoint& p, double* y) const {
@@ -122,41 +124,16 @@ double Climber::rangeChange2(const double* a, const double* b) const {
   return total;
 }
 
-Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
+// Every channel set: the entries' signal read through their vertex, any kernel, the Karcher step's
+// log map for unit vectors; sums in entry order.
+void Climber::generalSums(const Chart& chart, const std::vector<double>& signal, double qx, double qy, double& sw,
+                          double& mx, double& my) {
   const int width = s_.width;
-  const double* own = &signal[static_cast<size_t>(v) * width];
-  Climb result;
-  if (s_.mesh.isIsolated(v)) {  // no surface around it: nothing to average with
-    std::copy(own, own + width, out);
-    return result;
-  }
-  SurfacePoint p = SurfacePoint::atVertex(s_.mesh, v);
-  const Chart* chart = &local_;
-  double qx = 0, qy = 0;  // the iterate in `chart`
-  double reach = s_.drift;  // how far from the chart's centre the iterate may go before a new chart
-  const int slot = anchor_ ? slot_[v] : -1;
-  if (slot >= 0 && anchor_->x[slot] * anchor_->x[slot] + anchor_->y[slot] * anchor_->y[slot] <= s_.anchorReach * s_.anchorReach) {
-    chart = anchor_;
-    qx = anchor_->x[slot];
-    qy = anchor_->y[slot];
-    reach = s_.anchorReach + s_.drift;
-  } else {
-    chartAt(local_, p, s_.chartRadius);
-  }
-  std::copy(own, own + width, value_.begin());
-  result.converged = false;
-  for (int k = 0; k < s_.kmax; ++k) {
-    double sw = 0, mx = 0, my = 0;
-    if (s_.joint) std::fill(acc_.begin(), acc_.end(), 0.0);
-    const std::vector<int>& vertex = chart->vertex;
-    const std::vector<double>& cx = chart->x;
-    const std::vector<double>& cy = chart->y;
-    const auto cellOf = [&](double x) {
-      return std::clamp(static_cast<int>(std::floor((x - chart->origin) / chart->cell)), 0, chart->side - 1);
-    };
-    const int i0 = cellOf(qx - s_.r), i1 = cellOf(qx + s_.r), j0 = cellOf(qy - s_.r), j1 = cellOf(qy + s_.r);
-    for (int j = j0; j <= j1; ++j)
-    for (int e = chart->cellStart[j * chart->side + i0], last = chart->cellStart[j * chart->side + i1 + 1]; e < last; ++e) {
+  const std::vector<int>& vertex = chart.vertex;
+  const std::vector<double>& cx = chart.x;
+  const std::vector<double>& cy = chart.y;
+  forEachRun(chart, qx, qy, s_.r, [&](int begin, int last) {
+    for (int e = begin; e < last; ++e) {
       const double dx = cx[e] - qx, dy = cy[e] - qy, d2 = dx * dx + dy * dy;
       if (d2 > s_.r2) continue;
       const double* f = &signal[static_cast<size_t>(vertex[e]) * width];
@@ -182,6 +159,55 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
         const double k2 = w * std::acos(dot) / std::sqrt(t2);
         for (int d = c.offset; d < c.offset + c.dim; ++d) acc_[d] += k2 * (f[d] - dot * value_[d]);
       }
+    }
+  });
+}
+
+Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
+  const int width = s_.width;
+  const double* own = &signal[static_cast<size_t>(v) * width];
+  Climb result;
+  if (s_.mesh.isIsolated(v)) {  // no surface around it: nothing to average with
+    std::copy(own, own + width, out);
+    return result;
+  }
+  SurfacePoint p = SurfacePoint::atVertex(s_.mesh, v);
+  const Chart* chart = &local_;
+  const Samples* samples = &localSamples_;
+  const bool fast = s_.loop != Setup::Loop::General;
+  double qx = 0, qy = 0;  // the iterate in `chart`
+  double reach = s_.drift;  // how far from the chart's centre the iterate may go before a new chart
+  const int slot = anchor_ ? slot_[v] : -1;
+  if (slot >= 0 && anchor_->x[slot] * anchor_->x[slot] + anchor_->y[slot] * anchor_->y[slot] <= s_.anchorReach * s_.anchorReach) {
+    chart = anchor_;
+    samples = &anchorSamples_;
+    if (fast && !anchorGathered_) {  // once per anchor and signal: the group's vertices share it
+      gather(anchorSamples_, *anchor_, signal);
+      anchorGathered_ = true;
+    }
+    qx = anchor_->x[slot];
+    qy = anchor_->y[slot];
+    reach = s_.anchorReach + s_.drift;
+  } else {
+    chartAt(local_, p, s_.chartRadius);
+    if (fast) gather(localSamples_, local_, signal);
+  }
+  std::copy(own, own + width, value_.begin());
+  result.converged = false;
+  for (int k = 0; k < s_.kmax; ++k) {
+    double sw = 0, mx = 0, my = 0;
+    if (s_.joint) std::fill(acc_.begin(), acc_.end(), 0.0);
+    if (fast) {
+      Lanes lanes;
+      kernelSums(*chart, *samples, qx, qy, lanes);
+      const auto total = [](const double* l) { return (l[0] + l[1]) + (l[2] + l[3]); };
+      sw = total(lanes.sw);
+      mx = total(lanes.mx);
+      my = total(lanes.my);
+      if (s_.joint)
+        for (int d = 0; d < s_.width; ++d) acc_[d] = total(lanes.acc[d]);
+    } else {
+      generalSums(*chart, signal, qx, qy, sw, mx, my);
     }
     if (!(sw > 0)) {  // nothing within reach (all weights underflow): the iterate stays
       result.converged = true;
@@ -232,7 +258,9 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
     }
     if (rebase || qx * qx + qy * qy > reach * reach) {
       chartAt(local_, p, s_.chartRadius);
+      if (fast) gather(localSamples_, local_, signal);
       chart = &local_;
+      samples = &localSamples_;
       qx = qy = 0;
       reach = s_.drift;
     }

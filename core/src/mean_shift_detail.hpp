@@ -1,5 +1,6 @@
 #pragma once
 // Private to the mean shift sources: the validated setup, one vertex's climb, segmentation.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -54,6 +55,9 @@ struct Setup {
   double cell = 0, anchorReach = 0, anchorRadius = 0;  // shared start charts (0: off)
   int kmax = 0;
   bool joint = false, exact = false;
+  // The kernel loop's specialised form for this channel set (Climber::kernelSums), or General.
+  enum class Loop { General, Gaussian, Similarity } loop = Loop::General;
+  std::vector<double> coef{};  // per packed dimension: the 1 / 2h_r² of its channel
 };
 
 struct Climb {
@@ -62,8 +66,8 @@ struct Climb {
   bool converged = true;
 };
 
-// Entries are binned on a square grid of side r/4 over [-R, R]², row by row, so that an
-// iteration reads only the rows and columns within r of its iterate: a chart (up to r + drift +
+// Entries are binned on a square grid of side r/8 over [-R, R]², row by row, so that an
+// iteration reads only the cells within r of its iterate (forEachRun): a chart (up to r + drift +
 // anchor reach) is several times wider than the kernel's support.
 struct Chart {
   SurfacePoint base;
@@ -73,6 +77,25 @@ struct Chart {
   int side = 0;
   std::vector<int> cellStart;   // side² + 1 offsets into the entries, row-major
 };
+
+// Calls run(begin, end) for each row of cells that the disc of radius r about (qx, qy) meets, over
+// the columns of that row which the disc meets: the entries an iteration must look at, plus those
+// of the cells the circle cuts.
+template <class Run>
+inline void forEachRun(const Chart& chart, double qx, double qy, double r, const Run& run) {
+  const auto cellOf = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor((x - chart.origin) / chart.cell)), 0, chart.side - 1);
+  };
+  const int j0 = cellOf(qy - r), j1 = cellOf(qy + r);
+  for (int j = j0; j <= j1; ++j) {
+    const double lo = chart.origin + j * chart.cell, hi = lo + chart.cell;
+    const double gap = std::max(0.0, std::max(lo - qy, qy - hi));  // from qy to the row's nearest y
+    if (gap > r) continue;
+    const double half = std::sqrt(r * r - gap * gap);
+    const int row = j * chart.side;
+    run(chart.cellStart[row + cellOf(qx - half)], chart.cellStart[row + cellOf(qx + half) + 1]);
+  }
+}
 
 // A worker's solver and scratch; climbs one vertex at a time. The result of run() depends only on
 // the vertex and the signal, never on what the worker climbed before.
@@ -93,6 +116,19 @@ class Climber {
 
   LogMap logMap;
 
+  // The signal rows and sample weights of a chart's entries in the chart's order, one array per
+  // dimension (value[d * stride + e]), so that the kernel loop reads memory in sequence.
+  struct Samples {
+    std::vector<double> weight, value;
+    size_t stride = 0;
+  };
+  // Weighted sums of one iteration, in four interleaved lanes so that a vectorised loop and a
+  // scalar one add in the same order (the same results natively and in wasm).
+  struct Lanes {
+    double sw[4] = {}, mx[4] = {}, my[4] = {};
+    double acc[4][4] = {};  // acc[d][lane], joint Euclidean updates of up to 4 dimensions
+  };
+
  private:
   std::vector<int> order_, fill_;         // scratch of chartAt: cell of each entry, next slot of each cell
   std::vector<double> scratchX_, scratchY_;  // and its coordinates, in log-map order
@@ -102,10 +138,17 @@ class Climber {
   // −log of the range kernel product between y and the signal row f.
   double rangeExponent(const double* y, const double* f) const;
   double rangeChange2(const double* a, const double* b) const;
+  void generalSums(const Chart& chart, const std::vector<double>& signal, double qx, double qy, double& sw,
+                   double& mx, double& my);
+  void gather(Samples& samples, const Chart& chart, const std::vector<double>& signal) const;
+  // Σ over the chart's entries within r of (qx, qy) in the specialised loops; false: use the general one.
+  bool kernelSums(const Chart& chart, const Samples& samples, double qx, double qy, Lanes& lanes) const;
 
   const Setup& s_;
   Chart own_, local_;
   const Chart* anchor_ = nullptr;
+  Samples anchorSamples_, localSamples_;
+  bool anchorGathered_ = false;
   std::vector<int> slot_;  // per vertex: its entry in anchor_, or -1
   std::vector<double> value_, next_, acc_;
 };
