@@ -121,9 +121,13 @@ struct LogMap::State {
   };
   std::vector<Value> value;                     // by internal vertex
   std::vector<int> touched;                     // internal vertices with a finite U, reset by the next call
-  std::vector<Queued> heap;                     // binary min-heap on U with lazy deletion
+  // Binary min-heap on U with lazy deletion: `queued` entries, then one +inf entry so that a
+  // last parent's right child always exists.
+  std::vector<Queued> heap{Queued{kInf, -1}};
+  size_t queued = 0;
   std::vector<int> pending;                     // fan faces around c that had no known corner yet
-  std::vector<LogMapEntry> entries;
+  std::vector<Queued> popped;                   // valid pops within R, in pop order
+  std::vector<LogMapEntry> entries, stray, merged;
   double radius = 0;
   bool periodic = true;  // angles live on a circle (not at a boundary vertex source)
 
@@ -134,7 +138,9 @@ struct LogMap::State {
   void begin(double r, bool circle) {
     for (int v : touched) value[v].U = kInf;
     touched.clear();
-    heap.clear();
+    heap.assign(1, Queued{kInf, -1});
+    queued = 0;
+    popped.clear();
     entries.clear();
     radius = r;
     periodic = circle;
@@ -150,9 +156,9 @@ struct LogMap::State {
     value[v].U = u;
     value[v].theta = t;
     // Every value is queued, also in the ring just outside R: see run() for what that ring may do.
-    // Binary heap sifting a hole and comparing keys only (ties need no order: lazy deletion).
-    size_t hole = heap.size();
-    heap.emplace_back();
+    // Sifting a hole up, comparing keys only (ties need no order: lazy deletion).
+    size_t hole = queued++;
+    heap.emplace_back(Queued{kInf, -1});
     while (hole > 0) {
       const size_t parent = (hole - 1) / 2;
       if (heap[parent].u <= u) break;
@@ -162,19 +168,27 @@ struct LogMap::State {
     heap[hole] = {u, v};
   }
 
+  // Bottom-up: the hole at the root goes down the smaller children to a leaf without looking at
+  // the last entry, then the last entry climbs back above every key it does not exceed. Same heap
+  // as the textbook sift-down, but the data-dependent branch per level becomes a select (the choice
+  // of child was the solver's most mispredicted branch) and only the short climb tests keys.
   Queued popMin() {
-    const Queued top = heap.front(), last = heap.back();
+    const Queued top = heap[0];
+    const size_t n = --queued;
+    const Queued last = heap[n];
+    heap[n] = Queued{kInf, -1};
     heap.pop_back();
-    const size_t n = heap.size();
-    if (n == 0) return top;
     size_t hole = 0;
-    for (;;) {
-      size_t child = 2 * hole + 1;
-      if (child >= n) break;
-      if (child + 1 < n && heap[child + 1].u < heap[child].u) ++child;
-      if (last.u <= heap[child].u) break;
+    for (size_t child = 1; child < n; child = 2 * hole + 1) {
+      child += heap[child + 1].u < heap[child].u;
       heap[hole] = heap[child];
       hole = child;
+    }
+    while (hole > 0) {
+      const size_t parent = (hole - 1) / 2;
+      if (heap[parent].u < last.u) break;
+      heap[hole] = heap[parent];
+      hole = parent;
     }
     heap[hole] = last;
     return top;
@@ -252,13 +266,14 @@ struct LogMap::State {
   }
 
   void run() {
-    while (!heap.empty()) {
+    while (queued > 0) {
       const auto [u, c] = popMin();
       if (u != value[c].U) continue;  // superseded by a later, smaller push
       // Push only if u < R (§1): a vertex of the ring just outside does not propagate outwards. It
       // still closes the faces it shares with an inner vertex, though: a vertex inside R next to
       // the rim is often reached straight only through an edge (inner, outer) whose outer end got
       // its value after the inner end had popped, and would otherwise keep a fallback value.
+      if (u <= radius) popped.push_back({u, c});
       const double partnerLimit = u < radius ? kInf : radius;
       pending.clear();
       const int first = fanStart[c], last = fanStart[c + 1];
@@ -270,14 +285,27 @@ struct LogMap::State {
     }
   }
 
+  // The entries in the order of their last pop, which is almost the order of distance: pops only
+  // go back when a value drops below one popped earlier. Those few are sorted apart and merged in,
+  // instead of sorting the whole output (whose comparisons the branch predictor cannot guess).
   const std::vector<LogMapEntry>& collect(int sourceVertex) {
-    const int source = sourceVertex >= 0 ? inner[sourceVertex] : -1;
-    for (int v : touched)
-      if (value[v].U <= radius && v != source) entries.push_back({outer[v], value[v].U, value[v].theta});
-    std::sort(entries.begin(), entries.end(), [](const LogMapEntry& a, const LogMapEntry& b) {
+    const auto before = [](const LogMapEntry& a, const LogMapEntry& b) {
       return a.distance < b.distance || (a.distance == b.distance && a.vertex < b.vertex);
-    });
-    if (sourceVertex >= 0) entries.insert(entries.begin(), LogMapEntry{sourceVertex, 0.0, 0.0});
+    };
+    stray.clear();
+    if (sourceVertex >= 0) entries.push_back(LogMapEntry{sourceVertex, 0.0, 0.0});
+    for (const auto& [u, v] : popped) {
+      if (value[v].U != u) continue;  // popped again later, at its final value
+      const LogMapEntry e{outer[v], u, value[v].theta};
+      if (entries.empty() || !before(e, entries.back())) entries.push_back(e);
+      else stray.push_back(e);
+    }
+    if (!stray.empty()) {
+      std::sort(stray.begin(), stray.end(), before);
+      merged.resize(entries.size() + stray.size());
+      std::merge(entries.begin(), entries.end(), stray.begin(), stray.end(), merged.begin(), before);
+      std::swap(entries, merged);
+    }
     return entries;
   }
 };
