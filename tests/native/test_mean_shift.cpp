@@ -103,7 +103,7 @@ double worstAgainstGaussian(const Mesh& mesh, const std::vector<double>& signal,
   o.rangeBandwidth = 1e9;
   o.maxIterations = 1;
   o.rangeUpdate = RangeUpdate::Joint;
-  const std::vector<double>& filtered = meanShift(geometry, set, o).signal.get("S").values;
+  const std::vector<double> filtered = meanShift(geometry, set, o).signal.get("S").values;
   const std::vector<double> area = vertexAreas(mesh);
   const double hs = hsAel * geometry.averageEdgeLength(), radius = radiusAel * geometry.averageEdgeLength();
   double worst = 0;
