@@ -165,6 +165,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   for (int pass = 0; pass < options.passes; ++pass) {
     const std::string stage =
         options.passes == 1 ? "mean shift" : "blurring pass " + std::to_string(pass + 1) + "/" + std::to_string(options.passes);
+    for (Climber& c : climbers) c.beginPass();
     parallelFor(groupCount, parallel, progress, stage, double(pass) / options.passes,
                 double(pass + 1) / options.passes, [&](int g, int worker) {
                   Climber& climber = climbers[worker];

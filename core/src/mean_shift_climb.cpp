@@ -12,8 +12,45 @@ constexpr double kMaxExponent = 700;  // exp(−700) is a weight no sum notices;
 }
 
 Climber::Climber(const Setup& setup, LogMap map)
-    : logMap(std::move(map)), s_(setup), slot_(setup.mesh.vertexCount(), -1), value_(setup.width),
-      next_(setup.width), acc_(setup.width) {}
+    : logMap(std::move(map)), vertexCharts_(kVertexCharts), s_(setup), slot_(setup.mesh.vertexCount(), -1),
+      value_(setup.width), next_(setup.width), acc_(setup.width) {}
+
+Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& signal) {
+  VertexChart* slot = &vertexCharts_.front();
+  for (VertexChart& c : vertexCharts_) {
+    if (c.vertex == u) {
+      slot = &c;
+      break;
+    }
+    if (c.used < slot->used) slot = &c;  // else the least recently used
+  }
+  if (slot->vertex != u) {
+    // Wide enough for the kernel around any point of u's faces plus the drift allowance.
+    double longest = 0;
+    s_.mesh.forEachOutgoing(u, [&](int h) { longest = std::max(longest, s_.geometry.length(h)); });
+    slot->vertex = u;
+    slot->pass = -1;
+    slot->reach = s_.drift + longest;
+    chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + slot->reach);
+  }
+  if (s_.loop != Setup::Loop::General && slot->pass != pass_) {
+    gather(slot->samples, slot->chart, signal);
+    slot->pass = pass_;
+  }
+  slot->used = ++clock_;
+  return *slot;
+}
+
+Vec2 Climber::inVertexChart(int u, const SurfacePoint& p) const {
+  const Face& f = s_.mesh.face(p.face);
+  const int c = f[0] == u ? 0 : f[1] == u ? 1 : 2;
+  const int h = 3 * p.face + c;  // u -> f[c + 1]; the face lies counter-clockwise of it at u
+  const double phi = s_.geometry.polarAngle(h);
+  const double psi = phi + s_.geometry.angleScale(u) * s_.geometry.cornerAngle(h);
+  const double a = p.bary[(c + 1) % 3] * s_.geometry.length(h);
+  const double b = p.bary[(c + 2) % 3] * s_.geometry.length(Mesh::prev(h));
+  return {a * std::cos(phi) + b * std::cos(psi), a * std::sin(phi) + b * std::sin(psi)};
+}
 
 void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
   chart.base = base;
@@ -188,6 +225,11 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
     qx = anchor_->x[slot];
     qy = anchor_->y[slot];
     reach = s_.anchorReach + s_.drift;
+  } else if (!s_.exact) {
+    VertexChart& c = vertexChart(v, signal);
+    chart = &c.chart;
+    samples = &c.samples;
+    reach = c.reach;
   } else {
     chartAt(local_, p, s_.chartRadius);
     if (fast) gather(localSamples_, local_, signal);
@@ -256,13 +298,21 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
       result.converged = true;
       break;
     }
-    if (rebase || qx * qx + qy * qy > reach * reach) {
+    if (s_.exact) {  // the paper's procedure: a fresh log map at the iterate
       chartAt(local_, p, s_.chartRadius);
       if (fast) gather(localSamples_, local_, signal);
       chart = &local_;
       samples = &localSamples_;
       qx = qy = 0;
-      reach = s_.drift;
+    } else if (rebase || qx * qx + qy * qy > reach * reach) {
+      const int u = s_.mesh.face(p.face)[std::max_element(p.bary.data(), p.bary.data() + 3) - p.bary.data()];
+      VertexChart& c = vertexChart(u, signal);
+      const Vec2 q = inVertexChart(u, p);
+      chart = &c.chart;
+      samples = &c.samples;
+      qx = q.x();
+      qy = q.y();
+      reach = c.reach;
     }
   }
   std::copy(value_.begin(), value_.end(), out);

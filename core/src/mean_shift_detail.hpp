@@ -113,6 +113,8 @@ class Climber {
   void clearAnchor();
   // Mean shift from vertex v over the packed signal; writes the range value at the mode to out.
   Climb run(const std::vector<double>& signal, int v, double* out);
+  // Call before each pass: the signal changes between passes, the charts do not.
+  void beginPass() { ++pass_; }
 
   LogMap logMap;
 
@@ -143,6 +145,25 @@ class Climber {
   void gather(Samples& samples, const Chart& chart, const std::vector<double>& signal) const;
   // Σ over the chart's entries within r of (qx, qy) in the specialised loops; false: use the general one.
   bool kernelSums(const Chart& chart, const Samples& samples, double qx, double qy, Lanes& lanes) const;
+
+  // Charts at vertices, for climbs that start outside their group's chart or leave the chart they
+  // are in: the chart at the nearest vertex serves, and the few most recent stay, since the climbs
+  // of neighbouring vertices head for the same modes. A chart at a vertex is the same whenever it
+  // is computed, so what is cached never changes a result.
+  struct VertexChart {
+    int vertex = -1, pass = -1;
+    long long used = 0;
+    double reach = 0;  // how far from the vertex the iterate may go in this chart
+    Chart chart;
+    Samples samples;
+  };
+  static constexpr int kVertexCharts = 12;
+  std::vector<VertexChart> vertexCharts_;
+  long long clock_ = 0;
+  int pass_ = 0;
+  VertexChart& vertexChart(int u, const std::vector<double>& signal);
+  // p in the chart of its face's corner u (the corner's one-ring unfolded as its polar coordinates).
+  Vec2 inVertexChart(int u, const SurfacePoint& p) const;
 
   const Setup& s_;
   Chart own_, local_;
