@@ -3,6 +3,7 @@
 // that one analysis level costs O(removed vertices × valence) instead of a rebuild per collapse.
 // Half-edges are implicit in the face corners as in Mesh (h = 3f + k); a collapsed face is marked
 // dead and dropped by compact() at the end of the level.
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -41,7 +42,9 @@ void predictionWeights(int o, const Ring& r, const PositionRows& x, WaveletWeigh
 double turnCosine(int v, const Ring& r, const PositionRows& x);
 
 constexpr int kCostBands = 16;
-// The vertices in ascending cost, in kCostBands quantile bands, each band in vertex order.
+constexpr std::size_t kOrderBlock = 4096;
+// The vertices in ascending cost, in kCostBands quantile bands, each band in vertex order, block by
+// block of kOrderBlock vertices (a mesh with fewer candidates is one block).
 std::vector<int> bandedOrder(const std::vector<int>& vertices, const std::vector<double>& cost);
 
 class CollapseMesh {
