@@ -148,7 +148,48 @@ Mesh::Mesh(std::vector<Vec3> positions, const std::vector<Face>& faces, BuildRep
         }));
   }
 
+  buildFans(r);
+}
+
+Mesh Mesh::withTwins(std::vector<Vec3> positions, std::vector<Face> faces, std::vector<int> twins,
+                     BuildReport* report) {
+  requireValidFaces(faces, positions.size());
+  requireFinite(positions);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const Face& t = faces[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] ||
+        hasZeroArea(positions[t[0]], positions[t[1]], positions[t[2]]))
+      throw InputError("mesh with given twins: " + faceText(static_cast<int>(f), t) + " is degenerate");
+  }
+  const int nh = static_cast<int>(3 * faces.size());
+  if (static_cast<int>(twins.size()) != nh)
+    throw InputError("mesh with given twins: " + std::to_string(twins.size()) + " twins for " +
+                     std::to_string(nh) + " half-edges");
+  Mesh m;
+  m.positions_ = std::move(positions);
+  m.faces_ = std::move(faces);
+  m.twin_ = std::move(twins);
+  for (int h = 0; h < nh; ++h) {
+    const int t = m.twin_[h];
+    if (t < 0) {
+      m.twin_[h] = -1;
+      continue;
+    }
+    if (t >= nh || m.twin_[t] != h || m.tail(t) != m.head(h) || m.head(t) != m.tail(h))
+      throw InputError("mesh with given twins: half-edge " + std::to_string(h) + " (" + std::to_string(m.tail(h)) +
+                       " -> " + std::to_string(m.head(h)) + ") and its twin " + std::to_string(t) +
+                       " are not an opposite pair");
+  }
+  m.inputFace_.resize(m.faces_.size());
+  for (size_t f = 0; f < m.faces_.size(); ++f) m.inputFace_[f] = static_cast<int>(f);
+  BuildReport local;
+  m.buildFans(report ? *report : local);
+  return m;
+}
+
+void Mesh::buildFans(BuildReport& r) {
   // --- vertex fans: a vertex whose faces form several fans is split, one copy per extra fan ---
+  const int nh = halfedgeCount();
   const int nv0 = vertexCount();
   std::vector<int> outStart(nv0 + 1, 0), out(nh);
   for (int h = 0; h < nh; ++h) ++outStart[tail(h) + 1];

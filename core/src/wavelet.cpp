@@ -298,9 +298,10 @@ void requireFiniteSignals(const AttributeSet& signals, int n) {
   }
 }
 
-// A mesh from the live vertices (renumbered in increasing id order) and the current faces.
-WaveletLevelMesh snapshotMesh(const std::vector<int>& live, const std::vector<Face>& faces,
-                              const std::vector<double>& F, int C, int inputVertices) {
+// A mesh from the live vertices (renumbered in increasing id order) and the current faces. The
+// collapses kept the twins, so the Mesh skips its edge sort (half the analysis time at L = 1, 2).
+WaveletLevelMesh snapshotMesh(const std::vector<int>& live, const CollapseMesh& cm, const std::vector<double>& F,
+                              int C, int inputVertices) {
   WaveletLevelMesh s;
   std::vector<int> index(inputVertices, -1);
   std::vector<Vec3> positions(live.size());
@@ -309,12 +310,17 @@ WaveletLevelMesh snapshotMesh(const std::vector<int>& live, const std::vector<Fa
     const double* r = F.data() + static_cast<size_t>(live[i]) * C;
     positions[i] = Vec3(r[0], r[1], r[2]);
   }
+  const std::vector<Face>& faces = cm.faces();
   std::vector<Face> local(faces.size());
   for (size_t f = 0; f < faces.size(); ++f)
     for (int c = 0; c < 3; ++c) local[f][c] = index[faces[f][c]];
   BuildReport report;
-  s.mesh = Mesh(std::move(positions), local, &report);
-  if (!report.clean() || report.splitVertexCopies != 0 || s.mesh.faceCount() != static_cast<int>(faces.size()))
+  try {
+    s.mesh = Mesh::withTwins(std::move(positions), std::move(local), cm.twins(), &report);
+  } catch (const InputError& e) {
+    throw std::logic_error(std::string("wavelet: a coarse mesh is not valid: ") + e.what());
+  }
+  if (!report.clean() || report.splitVertexCopies != 0)
     throw std::logic_error("wavelet: a coarse mesh is not manifold: " +
                            (report.messages.empty() ? std::string("faces dropped") : report.messages.front()));
   s.inputVertex = live;
@@ -370,12 +376,12 @@ Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const Wav
     if (!an.level(l, L, options.keepLevelMeshes ? &parent : nullptr)) break;
     mr.levels.push_back(std::move(L));
     if (options.keepLevelMeshes) {
-      mr.levelMeshes.push_back(snapshotMesh(an.live, an.cm.faces(), an.F, C, n));
+      mr.levelMeshes.push_back(snapshotMesh(an.live, an.cm, an.F, C, n));
       mr.levelMeshes.back().parentFace = std::move(parent);
     }
   }
 
-  WaveletLevelMesh coarse = snapshotMesh(an.live, an.cm.faces(), an.F, C, n);
+  WaveletLevelMesh coarse = snapshotMesh(an.live, an.cm, an.F, C, n);
   mr.coarse = std::move(coarse.mesh);
   mr.coarseToFine = an.live;
   const int nc = static_cast<int>(an.live.size());

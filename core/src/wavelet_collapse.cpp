@@ -200,16 +200,17 @@ std::vector<int> CollapseMesh::compact(const std::vector<int>& liveVertices) {
       newIndex[f] = static_cast<int>(parent.size());
       parent.push_back(f);
     }
-  std::vector<Face> faces(parent.size());
-  std::vector<int> twin(3 * parent.size());
+  // In place: a face only moves down, onto a face already read.
   for (size_t nf = 0; nf < parent.size(); ++nf) {
     const int f = parent[nf];
-    faces[nf] = faces_[f];
+    faces_[nf] = faces_[f];
     for (int c = 0; c < 3; ++c) {
       const int t = twin_[3 * f + c];
-      twin[3 * nf + c] = t < 0 ? -1 : 3 * newIndex[t / 3] + t % 3;
+      twin_[3 * nf + c] = t < 0 ? -1 : 3 * newIndex[t / 3] + t % 3;
     }
   }
+  faces_.resize(parent.size());
+  twin_.resize(3 * parent.size());
   for (int v : liveVertices) {
     const int h = vh_[v];
     if (h >= 0) {
@@ -217,8 +218,6 @@ std::vector<int> CollapseMesh::compact(const std::vector<int>& liveVertices) {
       vh_[v] = 3 * newIndex[h / 3] + h % 3;
     }
   }
-  faces_ = std::move(faces);
-  twin_ = std::move(twin);
   return parent;
 }
 

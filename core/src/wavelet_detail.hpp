@@ -53,6 +53,7 @@ class CollapseMesh {
 
   int faceCount() const { return static_cast<int>(faces_.size()); }
   const std::vector<Face>& faces() const { return faces_; }
+  const std::vector<int>& twins() const { return twin_; }
   bool faceAlive(int f) const { return faces_[f][0] >= 0; }
   bool isolated(int v) const { return vh_[v] < 0; }
   bool boundaryVertex(int v) const { return vh_[v] >= 0 && twin_[vh_[v]] < 0; }

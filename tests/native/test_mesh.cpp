@@ -255,3 +255,34 @@ TEST_CASE("many faces on one vertex and duplicate faces do not break the build",
   REQUIRE(b.report.nonManifoldEdges == 3);
   checkConnectivity(b.mesh);
 }
+
+TEST_CASE("a mesh from given twins equals the constructor's; bad twins are refused", "[mesh][twins]") {
+  for (const TriangleSoup& s : {shapes::icosphere(2), shapes::grid(7, 0.2, 5), shapes::cylinder(9, 4)}) {
+    const Mesh built = buildMesh(s).mesh;
+    std::vector<int> twins(built.halfedgeCount());
+    for (int h = 0; h < built.halfedgeCount(); ++h) twins[h] = built.twin(h);
+    const Mesh m = Mesh::withTwins(built.positions(), built.faces(), twins);
+    checkConnectivity(m);
+    REQUIRE(m.vertexCount() == built.vertexCount());
+    REQUIRE(m.faces() == built.faces());
+    for (int h = 0; h < m.halfedgeCount(); ++h) REQUIRE(m.twin(h) == built.twin(h));
+    // The same start half-edge per vertex, so every walk around a vertex visits in the same order.
+    for (int v = 0; v < m.vertexCount(); ++v) REQUIRE(m.halfedge(v) == built.halfedge(v));
+    for (int f = 0; f < m.faceCount(); ++f) REQUIRE(m.inputFace(f) == f);
+  }
+
+  const Mesh ico = buildMesh(shapes::icosphere(0)).mesh;
+  std::vector<int> twins(ico.halfedgeCount());
+  for (int h = 0; h < ico.halfedgeCount(); ++h) twins[h] = ico.twin(h);
+  auto attempt = [&](std::vector<int> t, std::vector<Face> faces) { Mesh::withTwins(ico.positions(), faces, t); };
+  REQUIRE_THROWS_WITH(attempt({0, 1}, ico.faces()), Catch::Contains("2 twins for"));
+  std::vector<int> oneSided = twins;
+  oneSided[twins[0]] = -1;  // 0 still names its twin, which no longer names 0
+  REQUIRE_THROWS_WITH(attempt(oneSided, ico.faces()), Catch::Contains("half-edge 0 ("));
+  std::vector<int> wrong = twins;
+  std::swap(wrong[0], wrong[1]);  // mutual no more, and pointing at edges of other vertices
+  REQUIRE_THROWS_AS(attempt(wrong, ico.faces()), InputError);
+  std::vector<Face> degenerate = ico.faces();
+  degenerate[3] = {degenerate[3][0], degenerate[3][0], degenerate[3][1]};
+  REQUIRE_THROWS_WITH(attempt(twins, degenerate), Catch::Contains("face 3") && Catch::Contains("degenerate"));
+}

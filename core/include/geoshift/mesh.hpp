@@ -55,6 +55,15 @@ class Mesh {
   // dropped and non-manifold configurations split, as counted in `report` when given.
   Mesh(std::vector<Vec3> positions, const std::vector<Face>& faces, BuildReport* report = nullptr);
 
+  // The same mesh from faces whose half-edges are already paired (e.g. a coarsening of a Mesh that
+  // kept its twins): twins[3f + k] is the opposite half-edge or -1 on the boundary. Skips the edge
+  // sort of the constructor, most of its time on large meshes; fans, split copies and `report` as
+  // there. Throws InputError as the constructor does, and when twins has another size than
+  // 3 x faces, a pair is not mutual or its half-edges do not run opposite ways (naming the
+  // half-edge), or a face is degenerate (it cannot be dropped under given twins; naming the face).
+  static Mesh withTwins(std::vector<Vec3> positions, std::vector<Face> faces, std::vector<int> twins,
+                        BuildReport* report = nullptr);
+
   int vertexCount() const { return static_cast<int>(positions_.size()); }
   int faceCount() const { return static_cast<int>(faces_.size()); }
   int halfedgeCount() const { return 3 * faceCount(); }
@@ -111,6 +120,9 @@ class Mesh {
   int originalVertex(int v) const { return originalVertex_[v]; }
 
  private:
+  // Vertex half-edges, splitting a vertex whose faces form several fans (one copy per extra fan).
+  void buildFans(BuildReport& r);
+
   std::vector<Vec3> positions_;
   std::vector<Face> faces_;
   std::vector<int> inputFace_;
