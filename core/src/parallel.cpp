@@ -33,7 +33,6 @@ void parallelForChunks(int count, const ParallelOptions& options, const Progress
   if (count <= 0) return;
   const int chunk = std::max(1, options.chunk);
   const int chunks = (count + chunk - 1) / chunk;
-  const int threads = std::min(resolveThreads(options.threads), chunks);
 
   std::atomic<int> next{0};
   std::atomic<int> done{0};
@@ -77,6 +76,7 @@ void parallelForChunks(int count, const ParallelOptions& options, const Progress
 #ifdef GEOSHIFT_NO_THREADS
   work(0, true);
 #else
+  const int threads = std::min(resolveThreads(options.threads), chunks);
   std::vector<std::thread> pool;
   pool.reserve(threads - 1);
   try {
