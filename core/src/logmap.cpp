@@ -256,7 +256,7 @@ struct LogMap::State {
 
   // Face (c, head, apex) of c's fan: updates its apex from (c, head) and its head from (apex, c),
   // each only from a partner below `partnerLimit`. Returns false when neither other corner is known yet.
-  bool relax(int c, const FanFace& f, double partnerLimit) {
+  [[gnu::always_inline]] bool relax(int c, const FanFace& f, double partnerLimit) {
     const double Uhead = value[f.head].U, Uapex = value[f.apex].U;
     if (Uhead == kInf && Uapex == kInf) return false;
     // Only from corners known on entry: one first derived just now from the other would only feed back.
