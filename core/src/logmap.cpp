@@ -127,6 +127,7 @@ struct LogMap::State {
   std::vector<Queued> queue;
   size_t next = 0;
   std::vector<int> pending;                     // fan faces around c that had no known corner yet
+  std::vector<DeferredAngle> deferred;          // a pending Θ is stored as −1 − its index here
   std::vector<Queued> popped;                   // valid pops within R, in pop order
   std::vector<LogMapEntry> entries, stray, merged;
   double radius = 0;
@@ -142,6 +143,7 @@ struct LogMap::State {
     queue.clear();
     next = 0;
     popped.clear();
+    deferred.clear();
     entries.clear();
     radius = r;
     periodic = circle;
@@ -209,22 +211,26 @@ struct LogMap::State {
     if (!(Ui > u * (1 + kEps))) return;  // U_old / u_new > 1 + eps, written without the division
     double t;
     if (!through) {
-      t = viaJ ? value[j].theta : value[kk].theta;
+      t = theta(viaJ ? j : kk);
     } else {
-      double tj = value[j].theta, tk = value[kk].theta;
+      const double tj = theta(j), tk = theta(kk);
       if (std::abs(tj - tk) < kEps) {
         t = tj;
       } else {
-        // α = ∠(x_j, σ, x_i) / ∠(x_j, σ, x_k) in the unfolded plane.
-        const double full = angleBetween(-sx, -sy, e.d - sx, -sy);
-        const double alpha = full > 0 ? std::clamp(angleBetween(-sx, -sy, wx, wy) / full, 0.0, 1.0) : 0.0;
-        // Wrap rule [V]: the ends of an edge are less than π apart around the source.
-        if (periodic && std::abs(tj - tk) > kPi) (tj < tk ? tj : tk) += kTwoPi;
-        t = (1 - alpha) * tj + alpha * tk;
-        if (t >= kTwoPi) t -= kTwoPi;
+        // The interpolation waits until Θ_i is read: a quarter of the values are superseded or
+        // never read (the ring outside R) by then. Same arithmetic when it runs.
+        t = -1.0 - static_cast<double>(deferred.size());
+        deferred.push_back({sx, sy, e.d - sx, wx, wy, tj, tk});
       }
     }
     assign(i, u, t);
+  }
+
+  // Θ of a vertex with a finite U, interpolating it now if that was deferred.
+  double theta(int v) {
+    double& stored = value[v].theta;
+    if (stored < 0) stored = deferred[static_cast<size_t>(-1.0 - stored)].interpolate(periodic);
+    return stored;
   }
 
   // Face (c, head, apex) of c's fan: updates its apex from (c, head) and its head from (apex, c),
@@ -270,10 +276,9 @@ struct LogMap::State {
       return a.distance < b.distance || (a.distance == b.distance && a.vertex < b.vertex);
     };
     stray.clear();
-    if (sourceVertex >= 0) entries.push_back(LogMapEntry{sourceVertex, 0.0, 0.0});
     for (const auto& [u, v] : popped) {
       if (value[v].U != u) continue;  // popped again later, at its final value
-      const LogMapEntry e{outer[v], u, value[v].theta};
+      const LogMapEntry e{outer[v], u, theta(v)};
       if (entries.empty() || !before(e, entries.back())) entries.push_back(e);
       else stray.push_back(e);
     }
@@ -283,6 +288,7 @@ struct LogMap::State {
       std::merge(entries.begin(), entries.end(), stray.begin(), stray.end(), merged.begin(), before);
       std::swap(entries, merged);
     }
+    if (sourceVertex >= 0) entries.insert(entries.begin(), LogMapEntry{sourceVertex, 0.0, 0.0});
     return entries;
   }
 };

@@ -107,6 +107,23 @@ inline double angleBetween(double ux, double uy, double vx, double vy) {
   return x < 0 ? kPi - a : a;
 }
 
+// The angle interpolation of one update, kept until the value is read (see LogMap::State::update):
+// σ, the x of x_k − σ and x_i − σ in the unfolded face, and the angles at the edge's ends.
+struct DeferredAngle {
+  double sx, sy, kx, wx, wy, tj, tk;
+
+  double interpolate(bool periodic) const {
+    // α = ∠(x_j, σ, x_i) / ∠(x_j, σ, x_k) in the unfolded plane.
+    const double full = angleBetween(-sx, -sy, kx, -sy);
+    const double alpha = full > 0 ? std::clamp(angleBetween(-sx, -sy, wx, wy) / full, 0.0, 1.0) : 0.0;
+    double a = tj, b = tk;
+    // Wrap rule [V]: the ends of an edge are less than π apart around the source.
+    if (periodic && std::abs(a - b) > kPi) (a < b ? a : b) += kTwoPi;
+    const double t = (1 - alpha) * a + alpha * b;
+    return t >= kTwoPi ? t - kTwoPi : t;
+  }
+};
+
 struct Queued {
   double u;
   int vertex;
