@@ -108,7 +108,7 @@ struct LogMap::Tables {
 
 };
 
-// One solver's mutable buffers: values by internal vertex, the queue, the output.
+// One solver's mutable buffers: values by internal vertex, the heap, the output.
 struct LogMap::State {
   const Mesh& mesh;
   const std::vector<int>& inner;
@@ -121,11 +121,10 @@ struct LogMap::State {
   };
   std::vector<Value> value;                     // by internal vertex
   std::vector<int> touched;                     // internal vertices with a finite U, reset by the next call
-  // Values waiting to pop, sorted by U from `next` on (lazy deletion: a superseded entry stays and
-  // is skipped when it pops). A new value is almost always among the largest, so inserting it from
-  // the back moves a few entries, and a pop is a read, where a binary heap pays a sift each way.
-  std::vector<Queued> queue;
-  size_t next = 0;
+  // Binary min-heap on U with lazy deletion: `queued` entries, then one +inf entry so that a
+  // last parent's right child always exists.
+  std::vector<Queued> heap{Queued{kInf, -1}};
+  size_t queued = 0;
   std::vector<int> pending;                     // fan faces around c that had no known corner yet
   std::vector<DeferredAngle> deferred;          // a pending Θ is stored as −1 − its index here
   std::vector<Queued> popped;                   // valid pops within R, in pop order
@@ -140,8 +139,8 @@ struct LogMap::State {
   void begin(double r, bool circle) {
     for (int v : touched) value[v].U = kInf;
     touched.clear();
-    queue.clear();
-    next = 0;
+    heap.assign(1, Queued{kInf, -1});
+    queued = 0;
     popped.clear();
     deferred.clear();
     entries.clear();
@@ -152,21 +151,49 @@ struct LogMap::State {
   void assign(int v, double u, double t) {
     if (value[v].U == kInf) {
       touched.push_back(v);
-      // v pops later, after a queue's worth of other work: start fetching its fan now, so that the
+      // v pops later, after a heap's worth of other work: start fetching its fan now, so that the
       // pop does not wait on memory (the order of pops is data-dependent, the hardware cannot guess it).
       for (int f = fanStart[v], last = fanStart[v + 1]; f < last; ++f) __builtin_prefetch(&fan[f]);
     }
     value[v].U = u;
     value[v].theta = t;
     // Every value is queued, also in the ring just outside R: see run() for what that ring may do.
-    // After every entry with the same U: ties pop first in, first out.
-    size_t hole = queue.size();
-    queue.emplace_back();
-    while (hole > next && queue[hole - 1].u > u) {
-      queue[hole] = queue[hole - 1];
-      --hole;
+    // Sifting a hole up, comparing keys only (ties need no order: lazy deletion).
+    size_t hole = queued++;
+    heap.emplace_back(Queued{kInf, -1});
+    while (hole > 0) {
+      const size_t parent = (hole - 1) / 2;
+      if (heap[parent].u <= u) break;
+      heap[hole] = heap[parent];
+      hole = parent;
     }
-    queue[hole] = {u, v};
+    heap[hole] = {u, v};
+  }
+
+  // Bottom-up: the hole at the root goes down the smaller children to a leaf without looking at
+  // the last entry, then the last entry climbs back above every key it does not exceed. Same heap
+  // as the textbook sift-down, but the data-dependent branch per level becomes a select (the choice
+  // of child was the solver's most mispredicted branch) and only the short climb tests keys.
+  Queued popMin() {
+    const Queued top = heap[0];
+    const size_t n = --queued;
+    const Queued last = heap[n];
+    heap[n] = Queued{kInf, -1};
+    heap.pop_back();
+    size_t hole = 0;
+    for (size_t child = 1; child < n; child = 2 * hole + 1) {
+      child += heap[child + 1].u < heap[child].u;
+      heap[hole] = heap[child];
+      hole = child;
+    }
+    while (hole > 0) {
+      const size_t parent = (hole - 1) / 2;
+      if (heap[parent].u < last.u) break;
+      heap[hole] = heap[parent];
+      hole = parent;
+    }
+    heap[hole] = last;
+    return top;
   }
 
   void seed(int meshVertex, double u, double t) {
@@ -245,12 +272,8 @@ struct LogMap::State {
   }
 
   void run() {
-    while (next < queue.size()) {
-      if (next >= 4096 && 2 * next >= queue.size()) {  // a long run: drop what has popped
-        queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(next));
-        next = 0;
-      }
-      const auto [u, c] = queue[next++];
+    while (queued > 0) {
+      const auto [u, c] = popMin();
       if (u != value[c].U) continue;  // superseded by a later, smaller push
       // Push only if u < R (§1): a vertex of the ring just outside does not propagate outwards. It
       // still closes the faces it shares with an inner vertex, though: a vertex inside R next to
