@@ -2,10 +2,12 @@
 // Meshes: icosphere level 7 (163,842 vertices) and a 317×317 jittered grid (100,489 vertices).
 // Argument: radius in average edge lengths. Counters: us_per_call, vertices (entries per call).
 // Sources: a fixed pseudo-random list of 1000 faces, visited in turn, so the caches see a new
-// neighbourhood on every call.
+// neighbourhood on every call. BM_LogMapWhole: the whole mesh from one vertex (radius ∞, as
+// `geoshift geodesic` without --radius does it), where the queue holds a front of ~1000 vertices.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
+#include <limits>
 #include <random>
 
 #include "geoshift/geodesic.hpp"
@@ -63,10 +65,18 @@ void BM_LogMapPlane(benchmark::State& state) { run(state, plane()); }
 void BM_LogMapSphereWarm(benchmark::State& state) { run(state, sphere(), true); }
 void BM_LogMapPlaneWarm(benchmark::State& state) { run(state, plane(), true); }
 
+void BM_LogMapWhole(benchmark::State& state) {
+  const Fixture& fixture = state.range(0) == 0 ? sphere() : plane();
+  geoshift::LogMap logMap(fixture.geometry);
+  for (auto _ : state) benchmark::DoNotOptimize(logMap.computeFromVertex(0, std::numeric_limits<double>::infinity()).data());
+  state.SetLabel(state.range(0) == 0 ? "icosphere 164k" : "grid 100k, from a corner");
+}
+
 }  // namespace
 
 BENCHMARK(BM_LogMapSphere)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_LogMapPlane)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_LogMapSphereWarm)->Arg(4)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_LogMapPlaneWarm)->Arg(4)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LogMapWhole)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
