@@ -161,8 +161,8 @@ double Climber::rangeChange2(const double* a, const double* b) const {
   return total;
 }
 
-// Every channel set: the entries' signal read through their vertex, any kernel, the Karcher step's
-// log map for unit vectors; sums in entry order.
+// The entries' signal read through their vertex, any kernel, the Karcher step's log map for unit
+// vectors; sums in entry order.
 void Climber::generalSums(const Chart& chart, const std::vector<double>& signal, double qx, double qy, double& sw,
                           double& mx, double& my) {
   const int width = s_.width;
@@ -239,18 +239,10 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
   for (int k = 0; k < s_.kmax; ++k) {
     double sw = 0, mx = 0, my = 0;
     if (s_.joint) std::fill(acc_.begin(), acc_.end(), 0.0);
-    if (fast) {
-      Lanes lanes;
-      kernelSums(*chart, *samples, qx, qy, lanes);
-      const auto total = [](const double* l) { return (l[0] + l[1]) + (l[2] + l[3]); };
-      sw = total(lanes.sw);
-      mx = total(lanes.mx);
-      my = total(lanes.my);
-      if (s_.joint)
-        for (int d = 0; d < s_.width; ++d) acc_[d] = total(lanes.acc[d]);
-    } else {
+    if (fast)
+      kernelSums(*chart, *samples, qx, qy, sw, mx, my);
+    else
       generalSums(*chart, signal, qx, qy, sw, mx, my);
-    }
     if (!(sw > 0)) {  // nothing within reach (all weights underflow): the iterate stays
       result.converged = true;
       break;

@@ -124,12 +124,6 @@ class Climber {
     std::vector<double> weight, value;
     size_t stride = 0;
   };
-  // Weighted sums of one iteration, in four interleaved lanes so that a vectorised loop and a
-  // scalar one add in the same order (the same results natively and in wasm).
-  struct Lanes {
-    double sw[4] = {}, mx[4] = {}, my[4] = {};
-    double acc[4][4] = {};  // acc[d][lane], joint Euclidean updates of up to 4 dimensions
-  };
 
  private:
   std::vector<int> order_, fill_;         // scratch of chartAt: cell of each entry, next slot of each cell
@@ -140,11 +134,14 @@ class Climber {
   // −log of the range kernel product between y and the signal row f.
   double rangeExponent(const double* y, const double* f) const;
   double rangeChange2(const double* a, const double* b) const;
+  // One iteration's weighted sums over the chart's entries within r of (qx, qy): Σw, Σw·dx, Σw·dy,
+  // and for joint updates Σw·(tangent of the range value) into acc_. generalSums serves every
+  // channel set; kernelSums the specialised ones of Setup::loop (mean_shift_sums.cpp).
   void generalSums(const Chart& chart, const std::vector<double>& signal, double qx, double qy, double& sw,
                    double& mx, double& my);
+  void kernelSums(const Chart& chart, const Samples& samples, double qx, double qy, double& sw, double& mx,
+                  double& my);
   void gather(Samples& samples, const Chart& chart, const std::vector<double>& signal) const;
-  // Σ over the chart's entries within r of (qx, qy) in the specialised loops; false: use the general one.
-  bool kernelSums(const Chart& chart, const Samples& samples, double qx, double qy, Lanes& lanes) const;
 
   // Charts at vertices, for climbs that start outside their group's chart or leave the chart they
   // are in: the chart at the nearest vertex serves, and the few most recent stay, since the climbs

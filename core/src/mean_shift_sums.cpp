@@ -81,8 +81,15 @@ struct SimilarityRange {
 
 struct Sums {
   V sw = V{}, mx = V{}, my = V{};
-  V acc[4] = {V{}, V{}, V{}, V{}};
+  V acc[4] = {V{}, V{}, V{}, V{}};  // joint Euclidean updates of up to 4 dimensions
 };
+
+// An iteration's sums, the four lanes added in one fixed order.
+struct Totals {
+  double sw = 0, mx = 0, my = 0, acc[4] = {};
+};
+
+inline double total(V lanes) { return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]); }
 
 // Adds four entries starting at e (read from the arrays given) to the sums.
 template <int W, class Range>
@@ -128,28 +135,26 @@ template <int W, class Range>
 
 template <int W, class Range>
 [[gnu::always_inline]] inline void addChart(const Chart& chart, const Climber::Samples& samples, double qx, double qy,
-                                            const Setup& s, const Range& range, Climber::Lanes& lanes) {
+                                            const Setup& s, const Range& range, Totals& totals) {
   Sums sums;
   forEachRun(chart, qx, qy, s.r, [&](int begin, int end) {
     addRun<W>(chart, samples, begin, end, qx, qy, s.invTwoHs2, s.r2, range, s.joint, sums);
   });
-  for (int l = 0; l < 4; ++l) {
-    lanes.sw[l] = sums.sw[l];
-    lanes.mx[l] = sums.mx[l];
-    lanes.my[l] = sums.my[l];
-    for (int d = 0; d < W; ++d) lanes.acc[d][l] = sums.acc[d][l];
-  }
+  totals.sw = total(sums.sw);
+  totals.mx = total(sums.mx);
+  totals.my = total(sums.my);
+  for (int d = 0; d < W; ++d) totals.acc[d] = total(sums.acc[d]);
 }
 
 template <int W>
 void addGaussian(const Chart& chart, const Climber::Samples& samples, double qx, double qy, const Setup& s,
-                 const double* value, Climber::Lanes& lanes) {
+                 const double* value, Totals& totals) {
   GaussianRange<W> range;
   for (int d = 0; d < W; ++d) {
     range.y[d] = value[d];
     range.coef[d] = s.coef[d];
   }
-  addChart<W>(chart, samples, qx, qy, s, range, lanes);
+  addChart<W>(chart, samples, qx, qy, s, range, totals);
 }
 
 }  // namespace
@@ -170,54 +175,61 @@ void Climber::gather(Samples& samples, const Chart& chart, const std::vector<dou
 
 namespace {
 
-// The loop for the setup's channel set; false when there is no specialised one.
-[[gnu::always_inline]] inline bool sums(const Setup& s, const Chart& chart, const Climber::Samples& samples, double qx,
-                                        double qy, const double* y, Climber::Lanes& lanes) {
+// The loop for the setup's channel set (makeSetup chooses Gaussian only for up to 4 dimensions).
+[[gnu::always_inline]] inline void sums(const Setup& s, const Chart& chart, const Climber::Samples& samples, double qx,
+                                        double qy, const double* y, Totals& totals) {
   switch (s.loop) {
     case Setup::Loop::Gaussian:
       switch (s.width) {
-        case 1: addGaussian<1>(chart, samples, qx, qy, s, y, lanes); return true;
-        case 2: addGaussian<2>(chart, samples, qx, qy, s, y, lanes); return true;
-        case 3: addGaussian<3>(chart, samples, qx, qy, s, y, lanes); return true;
-        case 4: addGaussian<4>(chart, samples, qx, qy, s, y, lanes); return true;
-        default: return false;
+        case 1: addGaussian<1>(chart, samples, qx, qy, s, y, totals); break;
+        case 2: addGaussian<2>(chart, samples, qx, qy, s, y, totals); break;
+        case 3: addGaussian<3>(chart, samples, qx, qy, s, y, totals); break;
+        default: addGaussian<4>(chart, samples, qx, qy, s, y, totals); break;
       }
-    case Setup::Loop::Similarity: {
-      const SimilarityRange range{{y[0], y[1], y[2]}, s.channels.front().invTwoHr2};
-      addChart<0>(chart, samples, qx, qy, s, range, lanes);
-      return true;
-    }
-    default: return false;
+      break;
+    case Setup::Loop::Similarity:
+      addChart<0>(chart, samples, qx, qy, s, SimilarityRange{{y[0], y[1], y[2]}, s.channels.front().invTwoHr2}, totals);
+      break;
+    case Setup::Loop::General: break;  // never called: Climber::generalSums
   }
 }
 
 // The same loop compiled for the baseline instruction set and, on x86-64, for AVX2 (four doubles a
 // vector instead of two), chosen at run time. Both do the same IEEE operations on every entry and
 // add in the same lanes (AVX2 alone brings no fused multiply-add), so their results are identical.
-[[gnu::flatten]] bool sumsBaseline(const Setup& s, const Chart& chart, const Climber::Samples& samples, double qx,
-                                   double qy, const double* y, Climber::Lanes& lanes) {
-  return sums(s, chart, samples, qx, qy, y, lanes);
+[[gnu::flatten]] void sumsBaseline(const Setup& s, const Chart& chart, const Climber::Samples& samples, double qx,
+                                   double qy, const double* y, Totals& totals) {
+  sums(s, chart, samples, qx, qy, y, totals);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-[[gnu::flatten, gnu::target("avx2")]] bool sumsAvx2(const Setup& s, const Chart& chart,
+[[gnu::flatten, gnu::target("avx2")]] void sumsAvx2(const Setup& s, const Chart& chart,
                                                      const Climber::Samples& samples, double qx, double qy,
-                                                     const double* y, Climber::Lanes& lanes) {
-  return sums(s, chart, samples, qx, qy, y, lanes);
+                                                     const double* y, Totals& totals) {
+  sums(s, chart, samples, qx, qy, y, totals);
 }
 #endif
 
 }  // namespace
 
-bool Climber::kernelSums(const Chart& chart, const Samples& samples, double qx, double qy, Lanes& lanes) const {
+void Climber::kernelSums(const Chart& chart, const Samples& samples, double qx, double qy, double& sw, double& mx,
+                         double& my) {
+  Totals totals;
 #if defined(__x86_64__) && defined(__GNUC__)
   static const bool avx2 = [] {
     __builtin_cpu_init();  // a static initialiser may run before the library's own
     return __builtin_cpu_supports("avx2") != 0;
   }();
-  if (avx2) return sumsAvx2(s_, chart, samples, qx, qy, value_.data(), lanes);
+  if (avx2)
+    sumsAvx2(s_, chart, samples, qx, qy, value_.data(), totals);
+  else
 #endif
-  return sumsBaseline(s_, chart, samples, qx, qy, value_.data(), lanes);
+    sumsBaseline(s_, chart, samples, qx, qy, value_.data(), totals);
+  sw = totals.sw;
+  mx = totals.mx;
+  my = totals.my;
+  if (s_.joint)
+    for (int d = 0; d < s_.width; ++d) acc_[d] = totals.acc[d];
 }
 
 }  // namespace geoshift::mean_shift_detail
