@@ -16,6 +16,21 @@ function placements(json) {
   return out;
 }
 
+/**
+ * The exported scene against the input: same placements, and per mesh the same vertex count with
+ * finite positions; the meshes `moved(m)` names must have moved.
+ */
+function assertExportedScene(before, after, moved) {
+  assert.deepEqual(placements(after.json), placements(before.json));
+  for (let m = 0; m < before.json.meshes.length; m++) {
+    const p0 = before.accessor(before.json.meshes[m].primitives[0].attributes.POSITION);
+    const p1 = after.accessor(after.json.meshes[m].primitives[0].attributes.POSITION);
+    assert.equal(p1.length, p0.length, `mesh ${m}: vertex count changed`);
+    assert.ok(p1.every(Number.isFinite), `mesh ${m}: non-finite positions`);
+    if (moved(m)) assert.ok(p1.some((v, i) => Math.abs(v - p0[i]) > 1e-6), `mesh ${m} did not move`);
+  }
+}
+
 function noisyTorus(n = 64, m = 32) {
   const t = torus(n, m);
   let s = 12345;
@@ -46,14 +61,7 @@ test('a GLB given to file-input is denoised and exported with the same vertex co
   const before = parseGlb(input);
   const after = parseGlb(await exportedGlb(page));
   assert.equal(after.json.meshes.length, 2);
-  assert.deepEqual(placements(after.json), placements(before.json));
-  for (let m = 0; m < 2; m++) {
-    const p0 = before.accessor(before.json.meshes[m].primitives[0].attributes.POSITION);
-    const p1 = after.accessor(after.json.meshes[m].primitives[0].attributes.POSITION);
-    assert.equal(p1.length, p0.length, `mesh ${m}: vertex count changed`);
-    assert.ok(p1.every(Number.isFinite), `mesh ${m}: non-finite positions`);
-    if (m === 0) assert.ok(p1.some((v, i) => Math.abs(v - p0[i]) > 1e-6), 'the torus did not move');
-  }
+  assertExportedScene(before, after, (m) => m === 0);  // the torus moves
 });
 
 // The same scene with the ops that exist today: every mesh is filtered, the export keeps both
@@ -72,14 +80,8 @@ test('a two-mesh GLB is smoothed mesh by mesh and exported with its scene', asyn
   assert.equal(report.vertices, mesh.positions.length / 3 + 4);
   const before = parseGlb(input);
   const after = parseGlb(await exportedGlb(page));
-  assert.deepEqual(placements(after.json), placements(before.json));
-  for (let m = 0; m < 2; m++) {
-    const p0 = before.accessor(before.json.meshes[m].primitives[0].attributes.POSITION);
-    const p1 = after.accessor(after.json.meshes[m].primitives[0].attributes.POSITION);
-    assert.equal(p1.length, p0.length, `mesh ${m}: vertex count changed`);
-    assert.ok(p1.every(Number.isFinite), `mesh ${m}: non-finite positions`);
-    assert.ok(p1.some((v, i) => Math.abs(v - p0[i]) > 1e-6), `mesh ${m} did not move`);
-  }
+  assert.equal(after.json.meshes.length, 2);
+  assertExportedScene(before, after, () => true);
   await shoot(page, 'two-meshes-smoothed');
 });
 
