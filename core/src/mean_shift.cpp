@@ -85,6 +85,10 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
     for (int f = 0; f < mesh.faceCount(); ++f)
       for (int v : mesh.face(f)) s.sampleWeight[v] += area[f] / 3;
   }
+  double weightSum = 0;
+  for (double w : s.sampleWeight) weightSum += w;
+  s.weightScale = weightSum > 0 ? mesh.vertexCount() / weightSum : 1.0;
+  s.singlePrecision = o.singlePrecisionKernel;
   const double ael = g.averageEdgeLength();
   require(ael > 0, "the mesh has no edge of positive length");
   s.hs = o.spatialBandwidth * ael;

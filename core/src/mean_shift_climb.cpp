@@ -77,8 +77,8 @@ void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
   for (size_t c = 1; c < chart.cellStart.size(); ++c) chart.cellStart[c] += chart.cellStart[c - 1];
   fill_.assign(chart.cellStart.begin(), chart.cellStart.end() - 1);
   chart.vertex.resize(n);
-  chart.x.resize(n);
-  chart.y.resize(n);
+  chart.x.assign(n + kChartPad, 0.0);  // padded for the kernel loop's masked tails
+  chart.y.assign(n + kChartPad, 0.0);
   for (size_t e = 0; e < n; ++e) {
     const int at = fill_[order_[e]]++;
     chart.vertex[at] = entries[e].vertex;

@@ -55,6 +55,8 @@ struct Setup {
   double cell = 0, anchorReach = 0, anchorRadius = 0;  // shared start charts (0: off)
   int kmax = 0;
   bool joint = false, exact = false;
+  bool singlePrecision = true;  // the specialised loops' weights (MeanShiftOptions::singlePrecisionKernel)
+  double weightScale = 1;       // 1 / the mean sample weight
   // The kernel loop's specialised form for this channel set (Climber::kernelSums), or General.
   enum class Loop { General, Gaussian, Similarity } loop = Loop::General;
   std::vector<double> coef{};  // per packed dimension: the 1 / 2h_r² of its channel
@@ -69,10 +71,11 @@ struct Climb {
 // Entries are binned on a square grid of side r/8 over [-R, R]², row by row, so that an
 // iteration reads only the cells within r of its iterate (forEachRun): a chart (up to r + drift +
 // anchor reach) is several times wider than the kernel's support.
+constexpr size_t kChartPad = 4;
 struct Chart {
   SurfacePoint base;
   std::vector<int> vertex;    // vertices within the chart's radius of base
-  std::vector<double> x, y;   // and their log-map coordinates in base's frame
+  std::vector<double> x, y;   // and their log-map coordinates in base's frame, then kChartPad zeros
   double origin = 0, cell = 1;  // grid: cell (i, j) covers origin + [i, i+1) cell, ...
   int side = 0;
   std::vector<int> cellStart;   // side² + 1 offsets into the entries, row-major
@@ -119,9 +122,13 @@ class Climber {
   LogMap logMap;
 
   // The signal rows and sample weights of a chart's entries in the chart's order, one array per
-  // dimension (value[d * stride + e]), so that the kernel loop reads memory in sequence.
+  // dimension (value[d * stride + e]), so that the kernel loop reads memory in sequence. Single
+  // precision (Setup::singlePrecision) keeps its own copies: the chart's coordinates in units of h_s,
+  // weights over their mean, and values less `offset` (their mean over the chart, Gaussian loops).
   struct Samples {
     std::vector<double> weight, value;
+    std::vector<float> fx, fy, fweight, fvalue;
+    double offset[4] = {};
     size_t stride = 0;
   };
 

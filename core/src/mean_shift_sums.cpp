@@ -1,14 +1,16 @@
-// The kernel loop of one mean shift iteration for the common channel sets, in vectors of four
-// entries (GCC/Clang vector extensions: AVX2 registers where the CPU has them, two SSE2 halves
-// otherwise, scalar code in plain wasm): the chart's entries and their signal in flat arrays read in
-// sequence, no branch per entry (excluded entries get weight 0), an exponential without a branch
-// or a libm call. Lane l of the sums holds the entries at offsets ≡ l (mod 4) from each run's start,
-// on every target, so the results do not depend on the instruction set. Most of a filter's time is
-// spent here.
+// The kernel loop of one mean shift iteration for the common channel sets, in 32-byte vectors (GCC/
+// Clang vector extensions: AVX2 registers where the CPU has them, two SSE2 halves otherwise, scalar
+// code in plain wasm): the chart's entries and their signal in flat arrays read in sequence, no
+// branch per entry (excluded entries get weight 0), an exponential without a branch or a libm call.
+// Weights are computed in single precision (eight entries a vector) unless the options ask for
+// double (four); single-precision sums are moved into double lanes after every run of cells.
+// Lane l of the sums holds the entries at offsets ≡ l (mod lanes) from each run's start, on every
+// target, so the results do not depend on the instruction set. Most of a filter's time is spent here.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "mean_shift_detail.hpp"
 
@@ -17,48 +19,94 @@ namespace geoshift::mean_shift_detail {
 namespace {
 
 using V = double __attribute__((vector_size(32)));
-using Bits = std::int64_t __attribute__((vector_size(32)));
+using VHalf = float __attribute__((vector_size(16)));
 
-constexpr double kMaxExponent = 700;  // as in the general loop: beyond, a weight no sum notices
+template <class T>
+struct Lanes;
+template <>
+struct Lanes<double> {
+  using Vec = double __attribute__((vector_size(32)));
+  using Bits = std::int64_t __attribute__((vector_size(32)));
+  static constexpr int N = 4;
+  static constexpr double kMaxExponent = 700;  // as in the general loop: beyond, a weight no sum notices
+};
+template <>
+struct Lanes<float> {
+  using Vec = float __attribute__((vector_size(32)));
+  using Bits = std::int32_t __attribute__((vector_size(32)));
+  static constexpr int N = 8;
+  // e^−70 ≈ 4e-31 keeps weights (normalised to a mean sample weight of 1) and their products with
+  // coordinates (in units of h_s) clear of subnormals, which cost a microcode assist each.
+  static constexpr float kMaxExponent = 70;
+};
 
-[[gnu::always_inline]] inline V load(const double* p) {
-  V v;
+template <class T>
+[[gnu::always_inline]] inline typename Lanes<T>::Vec load(const T* p) {
+  typename Lanes<T>::Vec v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
 
-[[gnu::always_inline]] inline V select(Bits mask, V a) { return reinterpret_cast<V>(reinterpret_cast<Bits>(a) & mask); }
+template <class T>
+[[gnu::always_inline]] inline typename Lanes<T>::Vec select(typename Lanes<T>::Bits mask, typename Lanes<T>::Vec a) {
+  using Bits = typename Lanes<T>::Bits;
+  return reinterpret_cast<typename Lanes<T>::Vec>(reinterpret_cast<Bits>(a) & mask);
+}
 
-// e^−a for a in [0, 700]: x = −a = n ln2 + t with |t| ≤ ln2/2, a degree-11 Taylor polynomial of e^t
-// (truncation below 1.3e-14 relative) and 2^n assembled in the exponent bits of the rounding shift
-// (the low bits of 1.5·2^52 + n hold n; (bits + 1023) << 52 keeps only n + 1023 in the exponent).
-[[gnu::always_inline]] inline V expNegative(V a) {
+// e^−a for a in [0, kMaxExponent]: x = −a = n ln2 + t with |t| ≤ ln2/2, a Taylor polynomial of e^t
+// and 2^n assembled in the exponent bits of the rounding shift (the low bits of 1.5·2^52, or
+// 1.5·2^23, hold n; (bits + bias) << mantissa bits keeps only n + bias in the exponent).
+// Double: degree 11 (truncation below 1.3e-14 relative). Float: degree 7 (below 6e-9, under the
+// format's own rounding).
+[[gnu::always_inline]] inline Lanes<double>::Vec expNegative(Lanes<double>::Vec a) {
+  using Vec = Lanes<double>::Vec;
+  using Bits = Lanes<double>::Bits;
   constexpr double kLn2Hi = 6.93147180369123816490e-01, kLn2Lo = 1.90821492927058770002e-10;
   constexpr double kInvLn2 = 1.44269504088896338700e+00, kShift = 6755399441055744.0;
-  const V x = -a;
-  const V shifted = x * kInvLn2 + kShift;
-  const V n = shifted - kShift;
-  const V t = (x - n * kLn2Hi) - n * kLn2Lo;
+  const Vec x = -a;
+  const Vec shifted = x * kInvLn2 + kShift;
+  const Vec n = shifted - kShift;
+  const Vec t = (x - n * kLn2Hi) - n * kLn2Lo;
   // Estrin's scheme: a dependency chain of depth 7 instead of Horner's 22, so that consecutive
   // vectors overlap in the pipeline.
-  const V t2 = t * t, t4 = t2 * t2, t8 = t4 * t4;
-  const V q0 = 1.0 + t, q1 = 0.5 + t * (1.0 / 6), q2 = 1.0 / 24 + t * (1.0 / 120), q3 = 1.0 / 720 + t * (1.0 / 5040),
-          q4 = 1.0 / 40320 + t * (1.0 / 362880), q5 = 1.0 / 3628800 + t * (1.0 / 39916800);
-  const V p = (q0 + t2 * q1) + t4 * (q2 + t2 * q3) + t8 * (q4 + t2 * q5);
+  const Vec t2 = t * t, t4 = t2 * t2, t8 = t4 * t4;
+  const Vec q0 = 1.0 + t, q1 = 0.5 + t * (1.0 / 6), q2 = 1.0 / 24 + t * (1.0 / 120), q3 = 1.0 / 720 + t * (1.0 / 5040),
+            q4 = 1.0 / 40320 + t * (1.0 / 362880), q5 = 1.0 / 3628800 + t * (1.0 / 39916800);
+  const Vec p = (q0 + t2 * q1) + t4 * (q2 + t2 * q3) + t8 * (q4 + t2 * q5);
   const Bits scale = (reinterpret_cast<Bits>(shifted) + 1023) << 52;
-  return p * reinterpret_cast<V>(scale);
+  return p * reinterpret_cast<Vec>(scale);
+}
+
+[[gnu::always_inline]] inline Lanes<float>::Vec expNegative(Lanes<float>::Vec a) {
+  using Vec = Lanes<float>::Vec;
+  using Bits = Lanes<float>::Bits;
+  // ln 2 split so that n·kLn2Hi is exact for |n| < 2^11 (kLn2Hi has 12 significant bits).
+  constexpr float kLn2Hi = 0.693359375f, kLn2Lo = -2.12194440e-4f;
+  constexpr float kInvLn2 = 1.44269504f, kShift = 12582912.0f;
+  const Vec x = -a;
+  const Vec shifted = x * kInvLn2 + kShift;
+  const Vec n = shifted - kShift;
+  const Vec t = (x - n * kLn2Hi) - n * kLn2Lo;
+  const Vec t2 = t * t, t4 = t2 * t2;
+  const Vec q0 = 1.0f + t, q1 = 0.5f + t * (1.0f / 6), q2 = 1.0f / 24 + t * (1.0f / 120),
+            q3 = 1.0f / 720 + t * (1.0f / 5040);
+  const Vec p = (q0 + t2 * q1) + t4 * (q2 + t2 * q3);
+  const Bits scale = (reinterpret_cast<Bits>(shifted) + 127) << 23;
+  return p * reinterpret_cast<Vec>(scale);
 }
 
 // −log of the Gaussian range kernel (eq. 9) of W dimensions; coef = 1/2h_r² per dimension.
-template <int W>
+template <class T, int W>
 struct GaussianRange {
+  using Vec = typename Lanes<T>::Vec;
+  using Bits = typename Lanes<T>::Bits;
   static constexpr int kDims = W;  // signal dimensions read
-  double y[W], coef[W];
+  T y[W], coef[W];
   // Exponent and a mask of the entries the kernel keeps (all of them).
-  [[gnu::always_inline]] V operator()(const double* v, size_t stride, Bits& keep) const {
-    V a = V{} + 0.0;
+  [[gnu::always_inline]] Vec operator()(const T* v, size_t stride, Bits& keep) const {
+    Vec a = Vec{} + T(0);
     for (int d = 0; d < W; ++d) {
-      const V t = y[d] - load(v + d * stride);
+      const Vec t = y[d] - load(v + d * stride);
       a += t * t * coef[d];
     }
     keep = Bits{} - 1;
@@ -68,39 +116,96 @@ struct GaussianRange {
 
 // The normal-similarity kernel (eq. 8) normalised at equal normals, as in the general loop; normals
 // more than ~176° apart (similarity ≤ 1e-3) are excluded.
+template <class T>
 struct SimilarityRange {
+  using Vec = typename Lanes<T>::Vec;
+  using Bits = typename Lanes<T>::Bits;
   static constexpr int kDims = 3;
-  double y[3], coef;
-  [[gnu::always_inline]] V operator()(const double* v, size_t stride, Bits& keep) const {
-    const V sim = 0.5 + 0.5 * (y[0] * load(v) + y[1] * load(v + stride) + y[2] * load(v + 2 * stride));
-    keep = sim > 1e-3;
-    const V s = sim > 1e-3 ? sim : V{} + 1.0;
-    return (1 / (s * s) - 1) * coef;
+  T y[3], coef;
+  [[gnu::always_inline]] Vec operator()(const T* v, size_t stride, Bits& keep) const {
+    const Vec sim = T(0.5) + T(0.5) * (y[0] * load(v) + y[1] * load(v + stride) + y[2] * load(v + 2 * stride));
+    keep = sim > T(1e-3);
+    const Vec s = sim > T(1e-3) ? sim : Vec{} + T(1);
+    return (T(1) / (s * s) - T(1)) * coef;
   }
 };
 
+// Double lanes: 4 for double sums, 8 (two vectors) for single-precision runs moved into them.
+template <class T>
 struct Sums {
-  V sw = V{}, mx = V{}, my = V{};
-  V acc[4] = {V{}, V{}, V{}, V{}};  // joint Euclidean updates of up to 4 dimensions
+  using Vec = typename Lanes<T>::Vec;
+  static constexpr int kHalves = Lanes<T>::N / 4;
+  Vec sw = Vec{}, mx = Vec{}, my = Vec{};
+  Vec acc[4] = {Vec{}, Vec{}, Vec{}, Vec{}};  // joint Euclidean updates of up to 4 dimensions
+  V dsw[kHalves] = {}, dmx[kHalves] = {}, dmy[kHalves] = {}, dacc[4][kHalves] = {};
 };
 
-// An iteration's sums, the four lanes added in one fixed order.
+// After a run: single-precision lanes into their double lanes (and restart); nothing for double.
+template <int W>
+[[gnu::always_inline]] inline void settle(Sums<double>&, bool) {}
+
+[[gnu::always_inline]] inline void widen(Lanes<float>::Vec& from, V* to) {
+  const VHalf lo = __builtin_shufflevector(from, from, 0, 1, 2, 3), hi = __builtin_shufflevector(from, from, 4, 5, 6, 7);
+  to[0] += __builtin_convertvector(lo, V);
+  to[1] += __builtin_convertvector(hi, V);
+  from = Lanes<float>::Vec{};
+}
+
+template <int W>
+[[gnu::always_inline]] inline void settle(Sums<float>& sums, bool joint) {
+  widen(sums.sw, sums.dsw);
+  widen(sums.mx, sums.dmx);
+  widen(sums.my, sums.dmy);
+  if (joint)
+    for (int d = 0; d < W; ++d) widen(sums.acc[d], sums.dacc[d]);
+}
+
+// The double lanes of a sum added in one fixed order.
+template <class T>
+inline double total(typename Lanes<T>::Vec lanes, const V* wide) {
+  if constexpr (Lanes<T>::N == 4) {
+    return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
+  } else {
+    const V& a = wide[0];
+    const V& b = wide[1];
+    return ((a[0] + a[1]) + (a[2] + a[3])) + ((b[0] + b[1]) + (b[2] + b[3]));
+  }
+}
+
+// An iteration's sums, the lanes added in one fixed order.
 struct Totals {
   double sw = 0, mx = 0, my = 0, acc[4] = {};
 };
 
-inline double total(V lanes) { return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]); }
+// What an iteration's loop reads, in the precision of its weights: for single precision, chart
+// coordinates in units of h_s and signal values less the chart's offset (Climber::gather).
+template <class T>
+struct Arrays {
+  const T *x, *y, *weight, *value;
+  size_t stride;
+};
 
-// Adds four entries starting at e (read from the arrays given) to the sums.
-template <int W, class Range>
-[[gnu::always_inline]] inline void addFour(const double* x, const double* y, const double* weight, const double* value,
-                                           size_t stride, V qx, V qy, double invTwoHs2, double r2, const Range& range,
-                                           bool joint, Sums& sums) {
-  const V dx = load(x) - qx, dy = load(y) - qy, d2 = dx * dx + dy * dy;
+inline Arrays<double> arrays(const Chart& chart, const Climber::Samples& s, double) {
+  return {chart.x.data(), chart.y.data(), s.weight.data(), s.value.data(), s.stride};
+}
+inline Arrays<float> arrays(const Chart&, const Climber::Samples& s, float) {
+  return {s.fx.data(), s.fy.data(), s.fweight.data(), s.fvalue.data(), s.stride};
+}
+
+// Adds one vector of entries starting at the arrays given to the sums, those of the lanes in `lanes`.
+template <class T, int W, class Range>
+[[gnu::always_inline]] inline void addLanes(const T* x, const T* y, const T* weight, const T* value, size_t stride,
+                                            typename Lanes<T>::Vec qx, typename Lanes<T>::Vec qy, T invTwoHs2, T r2,
+                                            const Range& range, bool joint, typename Lanes<T>::Bits lanes,
+                                            Sums<T>& sums) {
+  using Vec = typename Lanes<T>::Vec;
+  using Bits = typename Lanes<T>::Bits;
+  constexpr T kMax = Lanes<T>::kMaxExponent;
+  const Vec dx = load(x) - qx, dy = load(y) - qy, d2 = dx * dx + dy * dy;
   Bits keep;
-  const V a = d2 * invTwoHs2 + range(value, stride, keep);
-  const V k = load(weight) * expNegative(a < kMaxExponent ? a : V{} + kMaxExponent);
-  const V w = select(keep & (d2 <= r2) & (a < kMaxExponent), k);
+  const Vec a = d2 * invTwoHs2 + range(value, stride, keep);
+  const Vec k = load(weight) * expNegative(a < kMax ? a : Vec{} + kMax);
+  const Vec w = select<T>(lanes & keep & (d2 <= r2) & (a < kMax), k);
   sums.sw += w;
   sums.mx += w * dx;
   sums.my += w * dy;
@@ -109,93 +214,137 @@ template <int W, class Range>
 }
 
 // Adds the entries [begin, end); W joint Euclidean dimensions accumulate when `joint`.
-template <int W, class Range>
-[[gnu::always_inline]] inline void addRun(const Chart& chart, const Climber::Samples& samples, int begin, int end,
-                                          double qx, double qy, double invTwoHs2, double r2, const Range& range,
-                                          bool joint, Sums& sums) {
-  const double* value = samples.value.data();
-  const size_t stride = samples.stride;
-  const V vx = V{} + qx, vy = V{} + qy;
+template <class T, int W, class Range>
+[[gnu::always_inline]] inline void addRun(const Arrays<T>& in, int begin, int end, T qx, T qy, T invTwoHs2, T r2,
+                                          const Range& range, bool joint, Sums<T>& sums) {
+  using Bits = typename Lanes<T>::Bits;
+  constexpr int N = Lanes<T>::N;
+  const size_t stride = in.stride;
+  const auto vx = typename Lanes<T>::Vec{} + qx, vy = typename Lanes<T>::Vec{} + qy;
+  const Bits all = Bits{} - 1;
   int e = begin;
-  for (; e + 4 <= end; e += 4)
-    addFour<W>(chart.x.data() + e, chart.y.data() + e, samples.weight.data() + e, value + e, stride, vx, vy, invTwoHs2,
-               r2, range, joint, sums);
-  if (e == end) return;
-  // The last one to three entries, padded with weight-0 entries at the iterate's own place and value.
-  const int m = end - e;
-  double x[4], y[4], weight[4], padded[4 * Range::kDims];
-  for (int i = 0; i < 4; ++i) {
-    x[i] = i < m ? chart.x[e + i] : qx;
-    y[i] = i < m ? chart.y[e + i] : qy;
-    weight[i] = i < m ? samples.weight[e + i] : 0.0;
-    for (int d = 0; d < Range::kDims; ++d) padded[d * 4 + i] = i < m ? value[d * stride + e + i] : range.y[d];
+  for (; e + N <= end; e += N)
+    addLanes<T, W>(in.x + e, in.y + e, in.weight + e, in.value + e, stride, vx, vy, invTwoHs2, r2, range, joint, all,
+                   sums);
+  if (e < end) {
+    // The last entries: a whole vector read on (the arrays are padded by a vector of finite
+    // values), the lanes past the run's end masked out.
+    Bits lane;
+    for (int i = 0; i < N; ++i) lane[i] = i;
+    addLanes<T, W>(in.x + e, in.y + e, in.weight + e, in.value + e, stride, vx, vy, invTwoHs2, r2, range, joint,
+                   lane < (end - e), sums);
   }
-  addFour<W>(x, y, weight, padded, 4, vx, vy, invTwoHs2, r2, range, joint, sums);
+  settle<W>(sums, joint);
 }
 
-template <int W, class Range>
+// The sums of an iteration at (qx, qy); for single precision, the coordinates are scaled by
+// `unit` (1/h_s) and rounded, and the step is corrected by what the rounding moved the iterate.
+template <class T, int W, class Range>
 [[gnu::always_inline]] inline void addChart(const Chart& chart, const Climber::Samples& samples, double qx, double qy,
                                             const Setup& s, const Range& range, Totals& totals) {
-  Sums sums;
+  const double unit = std::is_same_v<T, float> ? 1 / s.hs : 1.0;
+  const Arrays<T> in = arrays(chart, samples, T{});
+  const T tx = static_cast<T>(qx * unit), ty = static_cast<T>(qy * unit);
+  const T invTwoHs2 = static_cast<T>(s.invTwoHs2 / (unit * unit)), r2 = static_cast<T>(s.r2 * unit * unit);
+  Sums<T> sums;
   forEachRun(chart, qx, qy, s.r, [&](int begin, int end) {
-    addRun<W>(chart, samples, begin, end, qx, qy, s.invTwoHs2, s.r2, range, s.joint, sums);
+    addRun<T, W>(in, begin, end, tx, ty, invTwoHs2, r2, range, s.joint, sums);
   });
-  totals.sw = total(sums.sw);
-  totals.mx = total(sums.mx);
-  totals.my = total(sums.my);
-  for (int d = 0; d < W; ++d) totals.acc[d] = total(sums.acc[d]);
+  totals.sw = total<T>(sums.sw, sums.dsw);
+  // Σw(x − q) = Σw(x − t) + (t − q)Σw, back in chart units.
+  totals.mx = (total<T>(sums.mx, sums.dmx) + (double(tx) - qx * unit) * totals.sw) / unit;
+  totals.my = (total<T>(sums.my, sums.dmy) + (double(ty) - qy * unit) * totals.sw) / unit;
+  for (int d = 0; d < W; ++d) totals.acc[d] = total<T>(sums.acc[d], sums.dacc[d]) + samples.offset[d] * totals.sw;
 }
 
-template <int W>
+template <class T, int W>
 void addGaussian(const Chart& chart, const Climber::Samples& samples, double qx, double qy, const Setup& s,
                  const double* value, Totals& totals) {
-  GaussianRange<W> range;
+  GaussianRange<T, W> range;
   for (int d = 0; d < W; ++d) {
-    range.y[d] = value[d];
-    range.coef[d] = s.coef[d];
+    range.y[d] = static_cast<T>(value[d] - samples.offset[d]);
+    range.coef[d] = static_cast<T>(s.coef[d]);
   }
-  addChart<W>(chart, samples, qx, qy, s, range, totals);
+  addChart<T, W>(chart, samples, qx, qy, s, range, totals);
 }
 
 }  // namespace
+
+constexpr size_t kPad = 8;  // entries: one vector of either precision
 
 void Climber::gather(Samples& samples, const Chart& chart, const std::vector<double>& signal) const {
   const size_t n = chart.vertex.size();
   const int width = s_.width;
   samples.stride = n;
-  samples.weight.resize(n);
-  samples.value.resize(n * width);
+  // Each array is padded by a vector of zeros for the masked tails of addRun.
+  if (!s_.singlePrecision) {
+    samples.weight.assign(n + kPad, 0.0);
+    samples.value.assign(n * width + kPad, 0.0);
+    for (size_t e = 0; e < n; ++e) {
+      const int v = chart.vertex[e];
+      samples.weight[e] = s_.sampleWeight[v];
+      const double* row = &signal[static_cast<size_t>(v) * width];
+      for (int d = 0; d < width; ++d) samples.value[d * n + e] = row[d];
+    }
+    return;
+  }
+  // Single precision: values less their mean over the chart (differences keep their digits however
+  // far the signal sits from 0), weights over their mean, coordinates in units of h_s.
+  std::fill(std::begin(samples.offset), std::end(samples.offset), 0.0);
+  if (s_.loop == Setup::Loop::Gaussian && n > 0) {
+    for (size_t e = 0; e < n; ++e)
+      for (int d = 0; d < width; ++d) samples.offset[d] += signal[static_cast<size_t>(chart.vertex[e]) * width + d];
+    for (int d = 0; d < width; ++d) samples.offset[d] /= static_cast<double>(n);
+  }
+  const double unit = 1 / s_.hs;
+  samples.fx.assign(n + kPad, 0.0f);
+  samples.fy.assign(n + kPad, 0.0f);
+  samples.fweight.assign(n + kPad, 0.0f);
+  samples.fvalue.assign(n * width + kPad, 0.0f);
   for (size_t e = 0; e < n; ++e) {
     const int v = chart.vertex[e];
-    samples.weight[e] = s_.sampleWeight[v];
+    samples.fx[e] = static_cast<float>(chart.x[e] * unit);
+    samples.fy[e] = static_cast<float>(chart.y[e] * unit);
+    samples.fweight[e] = static_cast<float>(s_.sampleWeight[v] * s_.weightScale);
     const double* row = &signal[static_cast<size_t>(v) * width];
-    for (int d = 0; d < width; ++d) samples.value[d * n + e] = row[d];
+    for (int d = 0; d < width; ++d) samples.fvalue[d * n + e] = static_cast<float>(row[d] - samples.offset[d]);
   }
 }
 
 namespace {
 
 // The loop for the setup's channel set (makeSetup chooses Gaussian only for up to 4 dimensions).
-[[gnu::always_inline]] inline void sums(const Setup& s, const Chart& chart, const Climber::Samples& samples, double qx,
-                                        double qy, const double* y, Totals& totals) {
+template <class T>
+[[gnu::always_inline]] inline void sumsIn(const Setup& s, const Chart& chart, const Climber::Samples& samples,
+                                          double qx, double qy, const double* y, Totals& totals) {
   switch (s.loop) {
     case Setup::Loop::Gaussian:
       switch (s.width) {
-        case 1: addGaussian<1>(chart, samples, qx, qy, s, y, totals); break;
-        case 2: addGaussian<2>(chart, samples, qx, qy, s, y, totals); break;
-        case 3: addGaussian<3>(chart, samples, qx, qy, s, y, totals); break;
-        default: addGaussian<4>(chart, samples, qx, qy, s, y, totals); break;
+        case 1: addGaussian<T, 1>(chart, samples, qx, qy, s, y, totals); break;
+        case 2: addGaussian<T, 2>(chart, samples, qx, qy, s, y, totals); break;
+        case 3: addGaussian<T, 3>(chart, samples, qx, qy, s, y, totals); break;
+        default: addGaussian<T, 4>(chart, samples, qx, qy, s, y, totals); break;
       }
       break;
-    case Setup::Loop::Similarity:
-      addChart<0>(chart, samples, qx, qy, s, SimilarityRange{{y[0], y[1], y[2]}, s.channels.front().invTwoHr2}, totals);
+    case Setup::Loop::Similarity: {
+      const SimilarityRange<T> range{{T(y[0]), T(y[1]), T(y[2])}, T(s.channels.front().invTwoHr2)};
+      addChart<T, 0>(chart, samples, qx, qy, s, range, totals);
       break;
+    }
     case Setup::Loop::General: break;  // never called: Climber::generalSums
   }
 }
 
-// The same loop compiled for the baseline instruction set and, on x86-64, for AVX2 (four doubles a
-// vector instead of two), chosen at run time. Both do the same IEEE operations on every entry and
+[[gnu::always_inline]] inline void sums(const Setup& s, const Chart& chart, const Climber::Samples& samples, double qx,
+                                        double qy, const double* y, Totals& totals) {
+  if (s.singlePrecision)
+    sumsIn<float>(s, chart, samples, qx, qy, y, totals);
+  else
+    sumsIn<double>(s, chart, samples, qx, qy, y, totals);
+}
+
+// The same loop compiled for the baseline instruction set and, on x86-64, for AVX2 (a vector in one
+// register instead of two), chosen at run time. Both do the same IEEE operations on every entry and
 // add in the same lanes (AVX2 alone brings no fused multiply-add), so their results are identical.
 [[gnu::flatten]] void sumsBaseline(const Setup& s, const Chart& chart, const Climber::Samples& samples, double qx,
                                    double qy, const double* y, Totals& totals) {

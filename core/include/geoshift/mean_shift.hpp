@@ -66,6 +66,11 @@ struct MeanShiftOptions {
   // then one of the surface, not of the vertex sampling, so an iterate does not wander toward
   // where the mesh happens to be finer (the paper weighs every vertex alike: false).
   bool areaWeighted = true;
+  // Kernel weights of the usual channel sets (Gaussian range kernels on up to 4 dimensions, or one
+  // normal-similarity channel) in single precision: eight a vector instead of four, about twice as
+  // fast a kernel loop, weights within ~1e-7 relative, sums still in double. Results are the same on
+  // every machine, thread count and in wasm either way. false: double precision throughout.
+  bool singlePrecisionKernel = true;
   bool segments = false;  // label vertices by their modes (MeanShiftResult::segment)
   ParallelOptions parallel;
 };
