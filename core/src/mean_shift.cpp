@@ -89,6 +89,7 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
   for (double w : s.sampleWeight) weightSum += w;
   s.weightScale = weightSum > 0 ? mesh.vertexCount() / weightSum : 1.0;
   s.singlePrecision = o.singlePrecisionKernel;
+  for (int h = 0; h < 3 * mesh.faceCount(); ++h) s.longestEdge = std::max(s.longestEdge, g.length(h));
   const double ael = g.averageEdgeLength();
   require(ael > 0, "the mesh has no edge of positive length");
   s.hs = o.spatialBandwidth * ael;

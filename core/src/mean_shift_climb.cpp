@@ -56,6 +56,15 @@ void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
   chart.base = base;
   const std::vector<LogMapEntry>& entries = logMap.compute(base, radius);
   const size_t n = entries.size();
+  // A geodesic is no shorter than the straight line, so the chart's boundary vertices' straight
+  // distances bound how far a trace goes without meeting them; those beyond the chart are at least
+  // its radius away along the surface.
+  double nearestBoundary = radius;
+  const Vec3 at = base.position(s_.mesh);
+  for (const LogMapEntry& e : entries)
+    if (s_.mesh.isBoundaryVertex(e.vertex))
+      nearestBoundary = std::min(nearestBoundary, (s_.mesh.position(e.vertex) - at).norm());
+  chart.clear = nearestBoundary - s_.longestEdge;
   chart.cell = 0.125 * s_.r;
   chart.side = std::max(1, static_cast<int>(std::ceil(2 * radius / chart.cell)) + 1);
   chart.origin = -radius;
@@ -236,6 +245,15 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
   }
   std::copy(own, own + width, value_.begin());
   result.converged = false;
+  // Joint steps read the iterate's surface point only to change charts and at the end; sampled ones
+  // read the signal there after every step.
+  const bool defer = s_.joint && !s_.exact;
+  bool pending = false;  // p lags (qx, qy) in `chart`
+  const auto settle = [&] {
+    if (!pending) return;
+    p = expMap(s_.geometry, chart->base, Vec2(qx, qy)).end;
+    pending = false;
+  };
   for (int k = 0; k < s_.kmax; ++k) {
     double sw = 0, mx = 0, my = 0;
     if (s_.joint) std::fill(acc_.begin(), acc_.end(), 0.0);
@@ -252,16 +270,26 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
     const double step = std::sqrt(mx * mx + my * my);
     bool rebase = s_.exact, stuck = false;
     if (step > 1e-3 * s_.eps) {  // a shorter step would not move the point measurably
-      const ExpMapResult trace = expMap(s_.geometry, chart->base, Vec2(qx + mx, qy + my));
-      if (trace.hitBoundary) {
-        // Clipped at the boundary: the chart's coordinates no longer say where the iterate is.
-        stuck = (trace.end.position(s_.mesh) - p.position(s_.mesh)).norm() < 0.5 * s_.eps;
-        rebase = true;
+      const double tx = qx + mx, ty = qy + my;
+      if (defer && chart->clear > 0 && tx * tx + ty * ty < chart->clear * chart->clear) {
+        // No boundary within reach of the trace: it would end where the chart says, so it waits
+        // until p is read (the trace of the final (qx, qy) is the one every step would have made).
+        qx = tx;
+        qy = ty;
+        pending = true;
       } else {
-        qx += mx;
-        qy += my;
+        settle();
+        const ExpMapResult trace = expMap(s_.geometry, chart->base, Vec2(tx, ty));
+        if (trace.hitBoundary) {
+          // Clipped at the boundary: the chart's coordinates no longer say where the iterate is.
+          stuck = (trace.end.position(s_.mesh) - p.position(s_.mesh)).norm() < 0.5 * s_.eps;
+          rebase = true;
+        } else {
+          qx = tx;
+          qy = ty;
+        }
+        p = trace.end;
       }
-      p = trace.end;
     }
     if (s_.joint) {
       for (const Channel& c : s_.channels) {
@@ -297,6 +325,7 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
       samples = &localSamples_;
       qx = qy = 0;
     } else if (rebase || qx * qx + qy * qy > reach * reach) {
+      settle();
       const int u = s_.mesh.face(p.face)[std::max_element(p.bary.data(), p.bary.data() + 3) - p.bary.data()];
       VertexChart& c = vertexChart(u, signal);
       const Vec2 q = inVertexChart(u, p);
@@ -307,6 +336,7 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
       reach = c.reach;
     }
   }
+  settle();
   std::copy(value_.begin(), value_.end(), out);
   result.mode = p;
   return result;

@@ -51,6 +51,7 @@ struct Setup {
   std::vector<double> sampleWeight;  // per vertex: its area, or 1
   // Absolute units.
   double hs = 0, r = 0, eps = 0, invTwoHs2 = 0, r2 = 0, drift = 0, chartRadius = 0;
+  double longestEdge = 0;
   double rangeTolerance2 = 0;
   double cell = 0, anchorReach = 0, anchorRadius = 0;  // shared start charts (0: off)
   int kmax = 0;
@@ -74,6 +75,9 @@ struct Climb {
 constexpr size_t kChartPad = 4;
 struct Chart {
   SurfacePoint base;
+  // No boundary edge is nearer to base than this (the nearest boundary vertex less the longest edge),
+  // so a straightest geodesic from base shorter than it cannot hit one (Climber::run).
+  double clear = 0;
   std::vector<int> vertex;    // vertices within the chart's radius of base
   std::vector<double> x, y;   // and their log-map coordinates in base's frame, then kChartPad zeros
   double origin = 0, cell = 1;  // grid: cell (i, j) covers origin + [i, i+1) cell, ...
