@@ -112,6 +112,8 @@ Command addDenoise(CLI::App& app) {
                   "meanshift: consensus (default: corners that disagree with the face drop out) or mean (the paper)")
       ->check(CLI::IsMember({"consensus", "mean"}));
   sub->add_flag("--exact-charts", ms.exactCharts, "meanshift: a fresh log map at every iteration (slower reference)");
+  sub->add_flag("--double-weights", [options = &ms](std::int64_t) { options->singlePrecisionKernel = false; },
+                "meanshift: kernel weights in double precision (slower reference)");
   sub->add_option("--support-iterations", a->meanShift.support.iterations,
                   "meanshift: Taubin steps of the smoothed copy that carries the log and exp maps")
       ->capture_default_str()->check(CLI::NonNegativeNumber);

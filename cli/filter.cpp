@@ -24,7 +24,7 @@ struct FilterArgs {
   std::vector<double> alpha;
   bool filterGeometry = false;
   int threads = 0;
-  bool segments = false, exactCharts = false;
+  bool segments = false, exactCharts = false, doubleWeights = false;
 };
 
 // The preset (if any), then every option given on the command line over it.
@@ -59,6 +59,7 @@ FilterSettings settingsOf(const FilterArgs& a) {
   if (!a.alpha.empty()) s.hybrid.alpha = a.alpha;
   s.hybrid.filterGeometry = a.filterGeometry;
   o.exactCharts = a.exactCharts;
+  o.singlePrecisionKernel = !a.doubleWeights;
   o.segments = a.segments;
   o.parallel.threads = a.threads;
   return s;
@@ -102,6 +103,8 @@ Command addFilter(CLI::App& app) {
   sub->add_flag("--filter-geometry", a->filterGeometry, "with --levels: the gains apply to the positions too");
   sub->add_flag("--segments", a->segments, "also label vertices by their modes: attribute _SEGMENT");
   sub->add_flag("--exact-charts", a->exactCharts, "a fresh log map at every iteration (slower reference)");
+  sub->add_flag("--double-weights", a->doubleWeights,
+                "kernel weights in double precision (slower; single precision moves outputs by ~1e-7 of the signal's scale)");
   return {sub, [a] {
             const FilterSettings settings = settingsOf(*a);
             Document doc = load(a->in);

@@ -75,6 +75,20 @@ TEST_CASE("filter gives the same file for any thread count", "[cli][filter]") {
   REQUIRE(slurp(dir / "one.glb") == slurp(dir / "two.glb"));
 }
 
+TEST_CASE("filter --double-weights computes the kernel in double precision, to the same result within 1e-4", "[cli][filter]") {
+  const fs::path dir = tempDir("cli-filter-precision");
+  const fs::path in = noisyColoredSphere(dir);
+  REQUIRE(geoshiftCli("filter " + q(in) + " -o " + q(dir / "single.glb") + " --hs 2 --hr 0.3").code == 0);
+  REQUIRE(geoshiftCli("filter " + q(in) + " -o " + q(dir / "double.glb") + " --hs 2 --hr 0.3 --double-weights").code == 0);
+  const MeshPart a = readDocument((dir / "single.glb").string()).parts.at(0);
+  const MeshPart b = readDocument((dir / "double.glb").string()).parts.at(0);
+  REQUIRE(a.colors.size() == b.colors.size());
+  double worst = 0;
+  for (size_t v = 0; v < a.colors.size(); ++v) worst = std::max(worst, (a.colors[v] - b.colors[v]).cwiseAbs().maxCoeff());
+  REQUIRE(worst > 0);  // the flag reached the filter: single-precision weights round differently
+  REQUIRE(worst < 1e-4);
+}
+
 TEST_CASE("filter reads normals, curvature and named attributes", "[cli][filter]") {
   const fs::path dir = tempDir("cli-filter-signals");
   const fs::path in = dir / "box.off";
