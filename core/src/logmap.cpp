@@ -206,7 +206,9 @@ struct LogMap::State {
   [[gnu::always_inline]] void update(int j, int kk, int i, const Unfolded& e) {
     const double Uj = value[j].U, Uk = value[kk].U, Ui = value[i].U;
     // U = 0 would divide in the angle at σ (and the ring of a vertex source is exact already).
-    if (Uj == 0 || Uk == 0 || Uj == kInf || Uk == kInf || Ui == 0) return;
+    // U_j and U_k are finite: relax() passes a popped vertex and a partner below partnerLimit. No U
+    // is NaN (assign() and seed() only accept a smaller value), so one test covers the three zeros.
+    if (!(std::min(std::min(Uj, Uk), Ui) > 0)) return;
     double u = kInf, sx = 0, sy = 0, wx = 0, wy = 0;
     bool through = false;
     if (e.d >= kTinyEdge) {
