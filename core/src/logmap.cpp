@@ -158,7 +158,9 @@ struct LogMap::State {
     value[v].U = u;
     value[v].theta = t;
     // Every value is queued, also in the ring just outside R: see run() for what that ring may do.
-    // Sifting a hole up, comparing keys only (ties need no order: lazy deletion).
+    // Sifting a hole up, comparing keys only. Equal keys of different vertices do come out in an
+    // order that matters (it decides which of two nearly equal updates is kept, kEps): any other
+    // queue, or another tie-break, changes results on symmetric meshes and on spot.obj.
     size_t hole = queued++;
     heap.emplace_back(Queued{kInf, -1});
     while (hole > 0) {
