@@ -7,10 +7,6 @@
 
 namespace geoshift::mean_shift_detail {
 
-namespace {
-constexpr double kMaxExponent = 700;  // exp(−700) is a weight no sum notices; beyond, it underflows
-}
-
 Climber::Climber(const Setup& setup, LogMap map)
     : logMap(std::move(map)), vertexCharts_(kVertexCharts), s_(setup), slot_(setup.mesh.vertexCount(), -1),
       value_(setup.width), next_(setup.width), acc_(setup.width) {}

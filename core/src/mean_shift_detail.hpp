@@ -43,6 +43,10 @@ inline double kernelExp(double x) {
   return p * scale;
 }
 
+// Kernel exponents at or beyond this drop their entry (double precision): exp(−700) is a weight no
+// sum notices; beyond, it underflows.
+constexpr double kMaxExponent = 700;
+
 struct Setup {
   const SurfaceGeometry& geometry;
   const Mesh& mesh;

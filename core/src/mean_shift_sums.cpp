@@ -18,8 +18,9 @@ namespace geoshift::mean_shift_detail {
 
 namespace {
 
-using V = double __attribute__((vector_size(32)));
-using VHalf = float __attribute__((vector_size(16)));
+// The double lanes that sums end in, and half a single-precision vector on its way there.
+using Double4 = double __attribute__((vector_size(32)));
+using Float4 = float __attribute__((vector_size(16)));
 
 template <class T>
 struct Lanes;
@@ -28,7 +29,7 @@ struct Lanes<double> {
   using Vec = double __attribute__((vector_size(32)));
   using Bits = std::int64_t __attribute__((vector_size(32)));
   static constexpr int N = 4;
-  static constexpr double kMaxExponent = 700;  // as in the general loop: beyond, a weight no sum notices
+  static constexpr double kMaxExponent = mean_shift_detail::kMaxExponent;  // as in the general loop
 };
 template <>
 struct Lanes<float> {
@@ -137,22 +138,22 @@ struct Sums {
   static constexpr int kHalves = Lanes<T>::N / 4;
   Vec sw = Vec{}, mx = Vec{}, my = Vec{};
   Vec acc[4] = {Vec{}, Vec{}, Vec{}, Vec{}};  // joint Euclidean updates of up to 4 dimensions
-  V dsw[kHalves] = {}, dmx[kHalves] = {}, dmy[kHalves] = {}, dacc[4][kHalves] = {};
+  Double4 dsw[kHalves] = {}, dmx[kHalves] = {}, dmy[kHalves] = {}, dacc[4][kHalves] = {};
 };
 
 // After a run: single-precision lanes into their double lanes (and restart); nothing for double.
 template <int W>
-[[gnu::always_inline]] inline void settle(Sums<double>&, bool) {}
+[[gnu::always_inline]] inline void flushRun(Sums<double>&, bool) {}
 
-[[gnu::always_inline]] inline void widen(Lanes<float>::Vec& from, V* to) {
-  const VHalf lo = __builtin_shufflevector(from, from, 0, 1, 2, 3), hi = __builtin_shufflevector(from, from, 4, 5, 6, 7);
-  to[0] += __builtin_convertvector(lo, V);
-  to[1] += __builtin_convertvector(hi, V);
+[[gnu::always_inline]] inline void widen(Lanes<float>::Vec& from, Double4* to) {
+  const Float4 lo = __builtin_shufflevector(from, from, 0, 1, 2, 3), hi = __builtin_shufflevector(from, from, 4, 5, 6, 7);
+  to[0] += __builtin_convertvector(lo, Double4);
+  to[1] += __builtin_convertvector(hi, Double4);
   from = Lanes<float>::Vec{};
 }
 
 template <int W>
-[[gnu::always_inline]] inline void settle(Sums<float>& sums, bool joint) {
+[[gnu::always_inline]] inline void flushRun(Sums<float>& sums, bool joint) {
   widen(sums.sw, sums.dsw);
   widen(sums.mx, sums.dmx);
   widen(sums.my, sums.dmy);
@@ -162,12 +163,12 @@ template <int W>
 
 // The double lanes of a sum added in one fixed order.
 template <class T>
-inline double total(typename Lanes<T>::Vec lanes, const V* wide) {
+inline double total(typename Lanes<T>::Vec lanes, const Double4* wide) {
   if constexpr (Lanes<T>::N == 4) {
     return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
   } else {
-    const V& a = wide[0];
-    const V& b = wide[1];
+    const Double4& a = wide[0];
+    const Double4& b = wide[1];
     return ((a[0] + a[1]) + (a[2] + a[3])) + ((b[0] + b[1]) + (b[2] + b[3]));
   }
 }
@@ -234,7 +235,7 @@ template <class T, int W, class Range>
     addLanes<T, W>(in.x + e, in.y + e, in.weight + e, in.value + e, stride, vx, vy, invTwoHs2, r2, range, joint,
                    lane < (end - e), sums);
   }
-  settle<W>(sums, joint);
+  flushRun<W>(sums, joint);
 }
 
 // The sums of an iteration at (qx, qy); for single precision, the coordinates are scaled by
