@@ -101,12 +101,11 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
   s.drift = s.exact ? 0 : o.recentre * s.r;
   s.chartRadius = s.r + s.drift;
   require(std::isfinite(o.chartCell) && o.chartCell >= 0, "chartCell must be >= 0 (got " + number(o.chartCell) + ")");
+  require(std::isfinite(o.chartDistortion) && o.chartDistortion >= 0,
+          "chartDistortion must be >= 0 (got " + number(o.chartDistortion) + ")");
   if (!s.exact && o.chartCell > 0) {
     s.cell = o.chartCell * s.hs;
-    // A vertex of the cube is at most its diagonal from the anchor; the geodesic can be longer,
-    // and such a vertex then starts in its own chart.
-    s.anchorReach = std::sqrt(3.0) * s.cell;
-    s.anchorRadius = s.r + s.drift + s.anchorReach;
+    s.distortion = o.chartDistortion;
   }
   s.kmax = o.maxIterations;
   s.joint = o.rangeUpdate == RangeUpdate::Joint;
@@ -157,6 +156,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
 
   const Groups groups = groupVertices(s);
   const int groupCount = static_cast<int>(groups.anchor.size());
+  if (s.cell > 0) result.startCharts = groupCount;
   ParallelOptions parallel = options.parallel;
   if (s.cell > 0) parallel.chunk = 1;  // a group holds up to ~100 vertices: one per hand-out keeps progress prompt
   std::vector<double> current = pack(s, n), next(current.size());
@@ -177,14 +177,14 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
                   if (cacheCharts) {
                     // Filled in the first pass; a chart is the same whichever worker computes it.
                     if (pass == 0) {
-                      cache[g] = climber.anchorChart(groups.anchor[g]);
+                      cache[g] = climber.anchorChart(groups.anchor[g], groups.reach[g]);
                       const long long bytes = static_cast<long long>(cache[g].vertex.size()) * 20 +
                                               static_cast<long long>(cache[g].cellStart.size()) * 4;
                       if (cached.fetch_add(bytes) + bytes > options.chartCacheBytes) cacheFull = true;
                     }
                     climber.useAnchor(cache[g]);
                   } else if (s.cell > 0) {
-                    climber.setAnchor(groups.anchor[g]);
+                    climber.setAnchor(groups.anchor[g], groups.reach[g]);
                   }
                   for (int k = groups.start[g]; k < groups.start[g + 1]; ++k) {
                     const int v = groups.vertex[k];

@@ -92,16 +92,18 @@ void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
   }
 }
 
-void Climber::setAnchor(int vertex) {
+void Climber::setAnchor(int vertex, double reach) {
   clearAnchor();
   if (s_.mesh.isIsolated(vertex)) return;
-  chartAt(own_, SurfacePoint::atVertex(s_.mesh, vertex), s_.anchorRadius);
+  chartAt(own_, SurfacePoint::atVertex(s_.mesh, vertex), s_.r + s_.drift + reach);
+  own_.reach = reach;
   useAnchor(own_);
 }
 
-Chart Climber::anchorChart(int vertex) {
+Chart Climber::anchorChart(int vertex, double reach) {
   Chart chart;
-  if (!s_.mesh.isIsolated(vertex)) chartAt(chart, SurfacePoint::atVertex(s_.mesh, vertex), s_.anchorRadius);
+  if (!s_.mesh.isIsolated(vertex)) chartAt(chart, SurfacePoint::atVertex(s_.mesh, vertex), s_.r + s_.drift + reach);
+  chart.reach = reach;
   return chart;
 }
 
@@ -220,7 +222,7 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
   double qx = 0, qy = 0;  // the iterate in `chart`
   double reach = s_.drift;  // how far from the chart's centre the iterate may go before a new chart
   const int slot = anchor_ ? slot_[v] : -1;
-  if (slot >= 0 && anchor_->x[slot] * anchor_->x[slot] + anchor_->y[slot] * anchor_->y[slot] <= s_.anchorReach * s_.anchorReach) {
+  if (slot >= 0 && anchor_->x[slot] * anchor_->x[slot] + anchor_->y[slot] * anchor_->y[slot] <= anchor_->reach * anchor_->reach) {
     chart = anchor_;
     samples = &anchorSamples_;
     if (fast && !anchorGathered_) {  // once per anchor and signal: the group's vertices share it
@@ -229,7 +231,7 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
     }
     qx = anchor_->x[slot];
     qy = anchor_->y[slot];
-    reach = s_.anchorReach + s_.drift;
+    reach = anchor_->reach + s_.drift;
   } else if (!s_.exact) {
     VertexChart& c = vertexChart(v, signal);
     chart = &c.chart;

@@ -57,7 +57,8 @@ struct Setup {
   double hs = 0, r = 0, eps = 0, invTwoHs2 = 0, r2 = 0, drift = 0, chartRadius = 0;
   double longestEdge = 0;
   double rangeTolerance2 = 0;
-  double cell = 0, anchorReach = 0, anchorRadius = 0;  // shared start charts (0: off)
+  double cell = 0;        // side of the smallest cube of vertices sharing a start chart (0: off)
+  double distortion = 0;  // MeanShiftOptions::chartDistortion
   int kmax = 0;
   bool joint = false, exact = false;
   bool singlePrecision = true;  // the specialised loops' weights (MeanShiftOptions::singlePrecisionKernel)
@@ -79,6 +80,8 @@ struct Climb {
 constexpr size_t kChartPad = 4;
 struct Chart {
   SurfacePoint base;
+  // A group's start chart: how far from base (in the chart) a vertex may be to start in it.
+  double reach = 0;
   // No boundary edge is nearer to base than this (the nearest boundary vertex less the longest edge),
   // so a straightest geodesic from base shorter than it cannot hit one (Climber::run).
   double clear = 0;
@@ -116,11 +119,11 @@ class Climber {
   // The shared start chart of a cell: a log map at `vertex` that later run() calls start in when
   // their vertex is within anchorReach of it. The result of a run does not depend on which runs
   // came before it, only on the anchor set.
-  void setAnchor(int vertex);
+  void setAnchor(int vertex, double reach);
   // The same with a chart computed before by anchorChart() (blurring passes keep them: the domain
   // does not move between passes); it must outlive the runs.
   void useAnchor(const Chart& chart);
-  Chart anchorChart(int vertex);
+  Chart anchorChart(int vertex, double reach);
   void clearAnchor();
   // Mean shift from vertex v over the packed signal; writes the range value at the mode to out.
   Climb run(const std::vector<double>& signal, int v, double* out);
@@ -186,10 +189,13 @@ class Climber {
   std::vector<double> value_, next_, acc_;
 };
 
-// Vertices grouped by cubes of side setup.cell (one group per vertex when it is 0), each with the
-// vertex nearest its centroid as anchor; groups and their order depend only on the positions.
+// Vertices grouped by cubes of side setup.cell, or by cubes of 2 or 4 times that side where the
+// surface is flat enough (MeanShiftOptions::chartDistortion); one group per vertex when the cell is
+// 0. Each has the vertex nearest its centroid as anchor and the reach of its cube (its diagonal);
+// groups and their order depend only on the mesh.
 struct Groups {
   std::vector<int> start, vertex, anchor;  // group g: vertex[start[g] .. start[g+1])
+  std::vector<double> reach;
 };
 Groups groupVertices(const Setup& setup);
 

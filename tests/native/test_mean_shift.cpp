@@ -241,13 +241,45 @@ TEST_CASE("reused charts equal exact charts on a plane", "[meanshift]") {
   o.spatialBandwidth = 2;
   o.rangeBandwidth = 0.2;
   const MeanShiftResult reused = meanShift(geometry, colors(rgb), o);
+  o.chartDistortion = 0;  // cubes of side h_s only
+  const MeanShiftResult unmerged = meanShift(geometry, colors(rgb), o);
   o.exactCharts = true;
   const MeanShiftResult exact = meanShift(geometry, colors(rgb), o);
-  const auto& a = reused.signal.get("COLOR").values;
+  // The plane is flat: cubes merge into fewer, wider groups (at most 200 vertices each), and
+  // their charts are exact all the same.
+  CHECK(reused.startCharts < unmerged.startCharts / 4);
+  CHECK(reused.startCharts * 200 >= mesh.vertexCount());
+  CHECK(exact.startCharts == 0);
   const auto& b = exact.signal.get("COLOR").values;
-  double worst = 0;
-  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
-  REQUIRE(worst < 1e-6);
+  for (const MeanShiftResult* r : {&reused, &unmerged}) {
+    const auto& a = r->signal.get("COLOR").values;
+    double worst = 0;
+    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+    REQUIRE(worst < 1e-6);
+  }
+}
+
+TEST_CASE("start charts are shared over wider cubes only where the surface is flat", "[meanshift]") {
+  // A unit sphere (K = 1) at 2,562 vertices is too curved for wider cubes at h_s = 2 AEL: the same
+  // groups, the same bits. A cylinder is intrinsically flat (K = 0, and charts are exact on it up
+  // to its rims) however curved it looks: its cubes merge.
+  MeanShiftOptions o;
+  o.spatialBandwidth = 2;
+  o.rangeBandwidth = 0.2;
+  const Mesh sphere = build(shapes::icosphere(4));
+  const AttributeSet noisy = colors(stepColors(sphere, 0.08, 5));
+  const MeanShiftResult merged = meanShift(sphere, noisy, o);
+  o.chartDistortion = 0;
+  const MeanShiftResult unmerged = meanShift(sphere, noisy, o);
+  CHECK(merged.startCharts == unmerged.startCharts);
+  REQUIRE(merged.signal.get("COLOR").values == unmerged.signal.get("COLOR").values);
+
+  const Mesh tube = build(shapes::cylinder(64, 40, 1.0, 4.0));
+  const AttributeSet tubeColors = colors(stepColors(tube, 0.08, 5));
+  const MeanShiftResult tubeUnmerged = meanShift(tube, tubeColors, o);
+  o.chartDistortion = 0.1;
+  const MeanShiftResult tubeMerged = meanShift(tube, tubeColors, o);
+  CHECK(tubeMerged.startCharts < tubeUnmerged.startCharts / 2);
 }
 
 TEST_CASE("single-precision kernel weights agree with double precision on a curved surface", "[meanshift]") {

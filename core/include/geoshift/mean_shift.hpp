@@ -59,6 +59,12 @@ struct MeanShiftOptions {
   // cube's centre as their start chart (same approximation, with the start offset up to one side
   // from the chart's centre); 0: every vertex computes its own.
   double chartCell = 1.0;
+  // Where the surface is nearly flat, up to 4×4×4 such cubes (at most 200 vertices) share one
+  // start chart instead: while the mean Gaussian curvature K of their vertices (angle defects over
+  // area, taken per cube of chartCell so that a hill and a saddle do not cancel) keeps K·a² at most
+  // this, a = the farthest an iterate may start and drift from the chart's centre. A chart's
+  // distances are then off by about K·a²/6 relative. 0: cubes of chartCell only.
+  double chartDistortion = 0.1;
   // Blurring passes keep the start charts between passes up to this many bytes (then compute
   // them again each pass; results are the same either way).
   long long chartCacheBytes = 1LL << 30;
@@ -92,6 +98,7 @@ struct MeanShiftResult {
   double convergedFraction = 0;
   int threads = 1;
   double seconds = 0;
+  int startCharts = 0;  // shared start charts (groups of vertices) per pass; 0 without chartCell
 };
 
 // Filters the signal over the support surface. The support's mesh gives the vertices, their
