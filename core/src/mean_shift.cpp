@@ -79,8 +79,10 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
     s.width += a.dim;
   }
   s.sampleWeight.assign(mesh.vertexCount(), 1.0);
+  const std::vector<double> area = faceAreas(mesh);
+  for (double a : area) s.vertexArea += a;
+  s.vertexArea /= std::max(1, mesh.vertexCount());
   if (o.areaWeighted) {
-    const std::vector<double> area = faceAreas(mesh);
     std::fill(s.sampleWeight.begin(), s.sampleWeight.end(), 0.0);
     for (int f = 0; f < mesh.faceCount(); ++f)
       for (int v : mesh.face(f)) s.sampleWeight[v] += area[f] / 3;

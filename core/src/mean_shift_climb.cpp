@@ -2,14 +2,24 @@
 // the chart's centre (the note on speed of the mean shift issue; exact per-iteration charts as an option).
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "mean_shift_detail.hpp"
 
 namespace geoshift::mean_shift_detail {
 
 Climber::Climber(const Setup& setup, LogMap map)
-    : logMap(std::move(map)), vertexCharts_(kVertexCharts), s_(setup), slot_(setup.mesh.vertexCount(), -1),
+    : logMap(std::move(map)), vertexCharts_(vertexChartSlots(setup)), s_(setup), slot_(setup.mesh.vertexCount(), -1),
       value_(setup.width), next_(setup.width), acc_(setup.width) {}
+
+int Climber::vertexChartSlots(const Setup& s) {
+  // A vertex chart's entries: the vertices within r + r/4 + an edge, at the mean density; each
+  // costs about 40 bytes (vertex, coordinates, their single-precision copies, weight and value).
+  const double radius = s.r + s.drift + s.longestEdge;
+  const double entries = s.vertexArea > 0 ? std::numbers::pi * radius * radius / s.vertexArea : 0;
+  const double bytes = 40 * std::max(1.0, entries);
+  return static_cast<int>(std::clamp(kVertexChartBytes / bytes, 4.0, double(kVertexCharts)));
+}
 
 Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& signal) {
   VertexChart* slot = &vertexCharts_.front();
