@@ -157,6 +157,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   for (int w = 1; w < result.threads; ++w) climbers.emplace_back(s, climbers.front().logMap.fork());
 
   const Groups groups = groupVertices(s);
+  for (Climber& c : climbers) c.setGroups(&groups);
   const int groupCount = static_cast<int>(groups.anchor.size());
   if (s.cell > 0) result.startCharts = groupCount;
   ParallelOptions parallel = options.parallel;

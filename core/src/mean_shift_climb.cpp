@@ -21,23 +21,31 @@ int Climber::vertexChartSlots(const Setup& s) {
   return static_cast<int>(std::clamp(kVertexChartBytes / bytes, 4.0, double(kVertexCharts)));
 }
 
-Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& signal) {
+Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& signal, int group) {
   VertexChart* slot = &vertexCharts_.front();
   for (VertexChart& c : vertexCharts_) {
-    if (c.vertex == u) {
+    if (c.vertex == u && c.group == group) {
       slot = &c;
       break;
     }
     if (c.used < slot->used) slot = &c;  // else the least recently used
   }
-  if (slot->vertex != u) {
-    // Wide enough for the kernel around any point of u's faces plus the drift allowance.
-    double longest = 0;
-    s_.mesh.forEachOutgoing(u, [&](int h) { longest = std::max(longest, s_.geometry.length(h)); });
+  if (slot->vertex != u || slot->group != group) {
     slot->vertex = u;
+    slot->group = group;
     slot->pass = -1;
-    slot->reach = s_.drift + longest;
-    chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + slot->reach);
+    if (group >= 0) {  // the group's start chart (u is its anchor)
+      const double reach = groups_->reach[group];
+      chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + s_.drift + reach);
+      slot->chart.reach = reach;
+      slot->reach = reach + s_.drift;
+    } else {
+      // Wide enough for the kernel around any point of u's faces plus the drift allowance.
+      double longest = 0;
+      s_.mesh.forEachOutgoing(u, [&](int h) { longest = std::max(longest, s_.geometry.length(h)); });
+      slot->reach = s_.drift + longest;
+      chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + slot->reach);
+    }
   }
   if (s_.loop != Setup::Loop::General && slot->pass != pass_) {
     gather(slot->samples, slot->chart, signal);
@@ -45,6 +53,21 @@ Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& sig
   }
   slot->used = ++clock_;
   return *slot;
+}
+
+bool Climber::locate(const Chart& chart, const Mesh& mesh, const SurfacePoint& p, Vec2& q) {
+  const Face& f = mesh.face(p.face);
+  int found = 0;
+  Vec2 at[3] = {Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};
+  for (size_t e = 0; e < chart.vertex.size() && found < 3; ++e)
+    for (int k = 0; k < 3; ++k)
+      if (chart.vertex[e] == f[k]) {
+        at[k] = Vec2(chart.x[e], chart.y[e]);
+        ++found;
+      }
+  if (found < 3) return false;
+  q = p.bary[0] * at[0] + p.bary[1] * at[1] + p.bary[2] * at[2];
+  return true;
 }
 
 Vec2 Climber::inVertexChart(int u, const SurfacePoint& p) const {
@@ -335,13 +358,25 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
     } else if (rebase || qx * qx + qy * qy > reach * reach) {
       settle();
       const int u = s_.mesh.face(p.face)[std::max_element(p.bary.data(), p.bary.data() + 3) - p.bary.data()];
-      VertexChart& c = vertexChart(u, signal);
-      const Vec2 q = inVertexChart(u, p);
-      chart = &c.chart;
-      samples = &c.samples;
+      // The start chart of u's group serves when p is within its reach: the climbs that cross a
+      // region share its chart. Else the chart at u.
+      VertexChart* c = nullptr;
+      Vec2 q;
+      if (groups_ && s_.cell > 0) {
+        const int g = groups_->of[u];
+        VertexChart& shared = vertexChart(groups_->anchor[g], signal, g);
+        if (locate(shared.chart, s_.mesh, p, q) && q.squaredNorm() <= shared.chart.reach * shared.chart.reach)
+          c = &shared;
+      }
+      if (!c) {
+        c = &vertexChart(u, signal);
+        q = inVertexChart(u, p);
+      }
+      chart = &c->chart;
+      samples = &c->samples;
       qx = q.x();
       qy = q.y();
-      reach = c.reach;
+      reach = c->reach;
     }
   }
   settle();

@@ -93,6 +93,17 @@ struct Chart {
   std::vector<int> cellStart;   // side² + 1 offsets into the entries, row-major
 };
 
+// Vertices grouped by cubes of side setup.cell, or by cubes of 2 or 4 times that side where the
+// surface is flat enough (MeanShiftOptions::chartDistortion); one group per vertex when the cell is
+// 0. Each has the vertex nearest its centroid as anchor and the reach of its cube (its diagonal);
+// groups and their order depend only on the mesh.
+struct Groups {
+  std::vector<int> start, vertex, anchor;  // group g: vertex[start[g] .. start[g+1])
+  std::vector<double> reach;
+  std::vector<int> of;  // per vertex: its group
+};
+Groups groupVertices(const Setup& setup);
+
 // Calls run(begin, end) for each row of cells that the disc of radius r about (qx, qy) meets, over
 // the columns of that row which the disc meets: the entries an iteration must look at, plus those
 // of the cells the circle cuts.
@@ -126,6 +137,9 @@ class Climber {
   void useAnchor(const Chart& chart);
   Chart anchorChart(int vertex, double reach);
   void clearAnchor();
+  // The groups whose start charts a climb that leaves its chart continues in (Groups::of of the
+  // iterate's nearest vertex, when the iterate is within that chart's reach); null: vertex charts.
+  void setGroups(const Groups* groups) { groups_ = groups; }
   // Mean shift from vertex v over the packed signal; writes the range value at the mode to out.
   Climb run(const std::vector<double>& signal, int v, double* out);
   // Call before each pass: the signal changes between passes, the charts do not.
@@ -169,7 +183,7 @@ class Climber {
   // (terrain-ms on a terrain: 2.3x fewer charts computed than with 12), fewer when charts are
   // large: about 32 MB a worker.
   struct VertexChart {
-    int vertex = -1, pass = -1;
+    int vertex = -1, group = -1, pass = -1;  // a vertex's chart (group −1) or a group's start chart
     long long used = 0;
     double reach = 0;  // how far from the vertex the iterate may go in this chart
     Chart chart;
@@ -181,28 +195,22 @@ class Climber {
   std::vector<VertexChart> vertexCharts_;
   long long clock_ = 0;
   int pass_ = 0;
-  VertexChart& vertexChart(int u, const std::vector<double>& signal);
+  VertexChart& vertexChart(int u, const std::vector<double>& signal, int group = -1);
+  // p's coordinates in a chart from its face's corners, when all three are in it.
+  static bool locate(const Chart& chart, const Mesh& mesh, const SurfacePoint& p, Vec2& q);
   // p in the chart of its face's corner u (the corner's one-ring unfolded as its polar coordinates).
   Vec2 inVertexChart(int u, const SurfacePoint& p) const;
 
   const Setup& s_;
   Chart own_, local_;
   const Chart* anchor_ = nullptr;
+  const Groups* groups_ = nullptr;
   Samples anchorSamples_, localSamples_;
   bool anchorGathered_ = false;
   std::vector<int> slot_;  // per vertex: its entry in anchor_, or -1
   std::vector<double> value_, next_, acc_;
 };
 
-// Vertices grouped by cubes of side setup.cell, or by cubes of 2 or 4 times that side where the
-// surface is flat enough (MeanShiftOptions::chartDistortion); one group per vertex when the cell is
-// 0. Each has the vertex nearest its centroid as anchor and the reach of its cube (its diagonal);
-// groups and their order depend only on the mesh.
-struct Groups {
-  std::vector<int> start, vertex, anchor;  // group g: vertex[start[g] .. start[g+1])
-  std::vector<double> reach;
-};
-Groups groupVertices(const Setup& setup);
 
 // Fills result.segment / segmentCount from result.modes and the filtered packed signal.
 void segmentModes(const Setup& setup, const std::vector<double>& signal, MeanShiftResult& result);

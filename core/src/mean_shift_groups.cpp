@@ -29,12 +29,14 @@ Groups groupVertices(const Setup& s) {
   const int n = mesh.vertexCount();
   Groups g;
   g.vertex.resize(n);
+  g.of.resize(n);
   if (s.cell <= 0) {
     for (int v = 0; v < n; ++v) {
       g.start.push_back(v);
       g.vertex[v] = v;
       g.anchor.push_back(v);
       g.reach.push_back(0);
+      g.of[v] = v;
     }
     g.start.push_back(n);
     return g;
@@ -118,6 +120,7 @@ Groups groupVertices(const Setup& s) {
       if ((mesh.position(v) - centre).squaredNorm() < (mesh.position(best) - centre).squaredNorm()) best = v;
     }
     g.anchor.push_back(best);
+    for (int k = g.start[i]; k < g.start[i + 1]; ++k) g.of[g.vertex[k]] = i;
     // A vertex of the cube is at most its diagonal from the anchor; the geodesic can be longer,
     // and such a vertex then starts in its own chart.
     g.reach.push_back(std::sqrt(3.0) * std::ldexp(s.cell, level[i]));
