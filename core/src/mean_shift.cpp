@@ -187,7 +187,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
                     }
                     climber.useAnchor(cache[g]);
                   } else if (s.cell > 0) {
-                    climber.setAnchor(groups.anchor[g], groups.reach[g]);
+                    climber.setAnchor(g, current);
                   }
                   for (int k = groups.start[g]; k < groups.start[g + 1]; ++k) {
                     const int v = groups.vertex[k];

@@ -13,22 +13,23 @@ Climber::Climber(const Setup& setup, LogMap map)
       value_(setup.width), next_(setup.width), acc_(setup.width) {}
 
 int Climber::vertexChartSlots(const Setup& s) {
-  // A vertex chart's entries: the vertices within r + r/4 + an edge, at the mean density; each
-  // costs about 40 bytes (vertex, coordinates, their single-precision copies, weight and value).
-  const double radius = s.r + s.drift + s.longestEdge;
+  // A chart's entries: the vertices within r + r/4 + an edge (a vertex's chart) or the diagonal of
+  // an unmerged cube (a group's), at the mean density; each costs about 40 bytes (vertex,
+  // coordinates, their single-precision copies, weight and value).
+  const double radius = s.r + s.drift + std::max(s.longestEdge, std::sqrt(3.0) * s.cell);
   const double entries = s.vertexArea > 0 ? std::numbers::pi * radius * radius / s.vertexArea : 0;
   const double bytes = 40 * std::max(1.0, entries);
   return static_cast<int>(std::clamp(kVertexChartBytes / bytes, 4.0, double(kVertexCharts)));
 }
 
 Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& signal, int group) {
-  VertexChart* slot = &vertexCharts_.front();
+  VertexChart* slot = nullptr;
   for (VertexChart& c : vertexCharts_) {
     if (c.vertex == u && c.group == group) {
       slot = &c;
       break;
     }
-    if (c.used < slot->used) slot = &c;  // else the least recently used
+    if (!c.pinned && (!slot || c.used < slot->used)) slot = &c;  // else the least recently used
   }
   if (slot->vertex != u || slot->group != group) {
     slot->vertex = u;
@@ -125,12 +126,14 @@ void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
   }
 }
 
-void Climber::setAnchor(int vertex, double reach) {
+void Climber::setAnchor(int group, const std::vector<double>& signal) {
   clearAnchor();
+  const int vertex = groups_->anchor[group];
   if (s_.mesh.isIsolated(vertex)) return;
-  chartAt(own_, SurfacePoint::atVertex(s_.mesh, vertex), s_.r + s_.drift + reach);
-  own_.reach = reach;
-  useAnchor(own_);
+  VertexChart& c = vertexChart(vertex, signal, group);
+  useAnchor(c.chart);
+  c.pinned = true;
+  pinned_ = &c;
 }
 
 Chart Climber::anchorChart(int vertex, double reach) {
@@ -148,6 +151,8 @@ void Climber::useAnchor(const Chart& chart) {
 }
 
 void Climber::clearAnchor() {
+  if (pinned_) pinned_->pinned = false;
+  pinned_ = nullptr;
   if (!anchor_) return;
   for (int v : anchor_->vertex) slot_[v] = -1;
   anchor_ = nullptr;
@@ -257,8 +262,8 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
   const int slot = anchor_ ? slot_[v] : -1;
   if (slot >= 0 && anchor_->x[slot] * anchor_->x[slot] + anchor_->y[slot] * anchor_->y[slot] <= anchor_->reach * anchor_->reach) {
     chart = anchor_;
-    samples = &anchorSamples_;
-    if (fast && !anchorGathered_) {  // once per anchor and signal: the group's vertices share it
+    samples = pinned_ ? &pinned_->samples : &anchorSamples_;  // the cached chart's are gathered
+    if (fast && !pinned_ && !anchorGathered_) {  // once per anchor and signal: the group's vertices share it
       gather(anchorSamples_, *anchor_, signal);
       anchorGathered_ = true;
     }

@@ -128,10 +128,11 @@ inline void forEachRun(const Chart& chart, double qx, double qy, double r, const
 class Climber {
  public:
   Climber(const Setup& setup, LogMap logMap);
-  // The shared start chart of a cell: a log map at `vertex` that later run() calls start in when
-  // their vertex is within anchorReach of it. The result of a run does not depend on which runs
-  // came before it, only on the anchor set.
-  void setAnchor(int vertex, double reach);
+  // The shared start chart of a group (setGroups): a log map at its anchor that later run() calls
+  // start in when their vertex is within the group's reach of it. It is kept with the worker's
+  // other charts (and taken from them when there), so that climbs of other groups that come by
+  // continue in it. The result of a run does not depend on which runs came before it.
+  void setAnchor(int group, const std::vector<double>& signal);
   // The same with a chart computed before by anchorChart() (blurring passes keep them: the domain
   // does not move between passes); it must outlive the runs.
   void useAnchor(const Chart& chart);
@@ -184,6 +185,7 @@ class Climber {
   // large: about 32 MB a worker.
   struct VertexChart {
     int vertex = -1, group = -1, pass = -1;  // a vertex's chart (group −1) or a group's start chart
+    bool pinned = false;  // the current anchor: not evicted
     long long used = 0;
     double reach = 0;  // how far from the vertex the iterate may go in this chart
     Chart chart;
@@ -202,11 +204,12 @@ class Climber {
   Vec2 inVertexChart(int u, const SurfacePoint& p) const;
 
   const Setup& s_;
-  Chart own_, local_;
+  Chart local_;
   const Chart* anchor_ = nullptr;
   const Groups* groups_ = nullptr;
   Samples anchorSamples_, localSamples_;
   bool anchorGathered_ = false;
+  VertexChart* pinned_ = nullptr;  // the cached chart anchor_ points into (setAnchor), or null
   std::vector<int> slot_;  // per vertex: its entry in anchor_, or -1
   std::vector<double> value_, next_, acc_;
 };
