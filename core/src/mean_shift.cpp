@@ -161,7 +161,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   const int groupCount = static_cast<int>(groups.anchor.size());
   if (s.cell > 0) result.startCharts = groupCount;
   ParallelOptions parallel = options.parallel;
-  if (s.cell > 0) parallel.chunk = 1;  // a group holds up to ~100 vertices: one per hand-out keeps progress prompt
+  if (s.cell > 0) parallel.chunk = 1;  // a group holds up to ~200 vertices: one per hand-out keeps progress prompt
   std::vector<double> current = pack(s, n), next(current.size());
   // Blurring passes climb from the same vertices over the same domain: keep the start charts.
   bool cacheCharts = s.cell > 0 && options.passes > 1 && options.chartCacheBytes > 0;

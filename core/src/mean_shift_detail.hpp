@@ -177,12 +177,12 @@ class Climber {
                   double& my);
   void gather(Samples& samples, const Chart& chart, const std::vector<double>& signal) const;
 
-  // Charts at vertices, for climbs that start outside their group's chart or leave the chart they
-  // are in: the chart at the nearest vertex serves, and the most recent stay, since the climbs of
-  // neighbouring vertices head for the same modes along the same paths. A chart at a vertex is the
-  // same whenever it is computed, so what is cached never changes a result. Up to 64 are kept
-  // (terrain-ms on a terrain: 2.3x fewer charts computed than with 12), fewer when charts are
-  // large: about 32 MB a worker.
+  // The worker's charts: groups' start charts (setAnchor, and climbs that leave their chart near
+  // another group's anchor) and charts at vertices (climbs that start outside their group's chart,
+  // or leave theirs elsewhere). The most recent stay, since the climbs of neighbouring vertices
+  // head for the same modes along the same paths. A chart is the same whenever it is computed, so
+  // what is cached never changes a result. Up to 64 are kept (terrain-ms on a terrain's coarse mesh
+  // computed 2.1x fewer vertex charts than with 12), fewer when charts are large: about 32 MB.
   struct VertexChart {
     int vertex = -1, group = -1, pass = -1;  // a vertex's chart (group −1) or a group's start chart
     bool pinned = false;  // the current anchor: not evicted
