@@ -78,15 +78,13 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
     s.channels.push_back({&a, s.width, a.dim, a.kind == AttributeKind::UnitVector, c.kernel, 0.5 / (hr * hr), hr});
     s.width += a.dim;
   }
-  s.sampleWeight.assign(mesh.vertexCount(), 1.0);
   const std::vector<double> area = faceAreas(mesh);
+  s.vertexAreas.assign(mesh.vertexCount(), 0.0);
+  for (int f = 0; f < mesh.faceCount(); ++f)
+    for (int v : mesh.face(f)) s.vertexAreas[v] += area[f] / 3;
   for (double a : area) s.vertexArea += a;
   s.vertexArea /= std::max(1, mesh.vertexCount());
-  if (o.areaWeighted) {
-    std::fill(s.sampleWeight.begin(), s.sampleWeight.end(), 0.0);
-    for (int f = 0; f < mesh.faceCount(); ++f)
-      for (int v : mesh.face(f)) s.sampleWeight[v] += area[f] / 3;
-  }
+  s.sampleWeight = o.areaWeighted ? s.vertexAreas : std::vector<double>(mesh.vertexCount(), 1.0);
   double weightSum = 0;
   for (double w : s.sampleWeight) weightSum += w;
   s.weightScale = weightSum > 0 ? mesh.vertexCount() / weightSum : 1.0;

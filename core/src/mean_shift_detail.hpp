@@ -53,6 +53,7 @@ struct Setup {
   std::vector<Channel> channels;
   int width = 0;
   std::vector<double> sampleWeight;  // per vertex: its area, or 1
+  std::vector<double> vertexAreas{};  // per vertex: a third of its faces' areas
   // Absolute units.
   double hs = 0, r = 0, eps = 0, invTwoHs2 = 0, r2 = 0, drift = 0, chartRadius = 0;
   double longestEdge = 0;

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <numbers>
 
-#include "geoshift/geometry.hpp"
 #include "mean_shift_detail.hpp"
 
 namespace geoshift::mean_shift_detail {
@@ -58,11 +57,9 @@ Groups groupVertices(const Setup& s) {
   // Gaussian curvature: interior angle defects (boundary vertices' turning says nothing about the
   // chart's metric) over vertex areas.
   const int levels = s.distortion > 0 ? kLevels : 0;
-  std::vector<double> defect(n, 0.0), area(n, 0.0);
+  const std::vector<double>& area = s.vertexAreas;
+  std::vector<double> defect(n, 0.0);
   if (levels > 0) {
-    const std::vector<double> faceArea = faceAreas(mesh);
-    for (int f = 0; f < mesh.faceCount(); ++f)
-      for (int v : mesh.face(f)) area[v] += faceArea[f] / 3;
     for (int v = 0; v < n; ++v)
       if (!mesh.isIsolated(v) && !mesh.isBoundaryVertex(v)) defect[v] = 2 * std::numbers::pi - s.geometry.angleSum(v);
   }
