@@ -164,14 +164,25 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   // Blurring passes climb from the same vertices over the same domain: keep the start charts.
   bool cacheCharts = s.cell > 0 && options.passes > 1 && options.chartCacheBytes > 0;
   std::vector<Chart> cache(cacheCharts ? groupCount : 0);
-  std::atomic<long long> cached{0};
+  std::vector<std::atomic<bool>> ready(cache.size());  // cache[g] is filled (read by other workers)
+  // And the charts of the vertices that start outside their group's chart (a detour makes them
+  // farther from its anchor than the cube's diagonal, as up a wall of a terrain): per group, its
+  // members' in its order, or none for a member that starts in the group's chart.
+  std::vector<std::vector<Chart>> own(cacheCharts ? groupCount : 0);
+  std::atomic<long long> cached{0}, stored{0};  // bytes of the charts kept here and in the store
   std::atomic<bool> cacheFull{false};
+  ChartStore store(n, groupCount, stored, options.chartCacheBytes / 4);
+  if (!s.exact && options.chartCacheBytes > 0)
+    for (Climber& c : climbers) c.setStore(&store);
   std::vector<int> passIterations(n);
   long long total = 0;
   for (int pass = 0; pass < options.passes; ++pass) {
     const std::string stage =
         options.passes == 1 ? "mean shift" : "blurring pass " + std::to_string(pass + 1) + "/" + std::to_string(options.passes);
-    for (Climber& c : climbers) c.beginPass();
+    for (Climber& c : climbers) {
+      c.beginPass();
+      c.setGroupCharts(cacheCharts ? &cache : nullptr, &ready);
+    }
     parallelFor(groupCount, parallel, progress, stage, double(pass) / options.passes,
                 double(pass + 1) / options.passes, [&](int g, int worker) {
                   Climber& climber = climbers[worker];
@@ -179,9 +190,16 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
                     // Filled in the first pass; a chart is the same whichever worker computes it.
                     if (pass == 0) {
                       cache[g] = climber.anchorChart(groups.anchor[g], groups.reach[g]);
-                      const long long bytes = static_cast<long long>(cache[g].vertex.size()) * 20 +
-                                              static_cast<long long>(cache[g].cellStart.size()) * 4;
+                      climber.useAnchor(cache[g]);
+                      own[g].resize(groups.start[g + 1] - groups.start[g]);
+                      long long bytes = ChartStore::bytesOf(cache[g]);
+                      for (int k = groups.start[g]; k < groups.start[g + 1]; ++k)
+                        if (!climber.startsInAnchor(groups.vertex[k])) {
+                          own[g][k - groups.start[g]] = climber.vertexStartChart(groups.vertex[k]);
+                          bytes += ChartStore::bytesOf(own[g][k - groups.start[g]]);
+                        }
                       if (cached.fetch_add(bytes) + bytes > options.chartCacheBytes) cacheFull = true;
+                      ready[g].store(true, std::memory_order_release);
                     }
                     climber.useAnchor(cache[g]);
                   } else if (s.cell > 0) {
@@ -189,7 +207,9 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
                   }
                   for (int k = groups.start[g]; k < groups.start[g + 1]; ++k) {
                     const int v = groups.vertex[k];
-                    const Climb c = climber.run(current, v, &next[static_cast<size_t>(v) * s.width]);
+                    const Chart* ownChart = nullptr;
+                    if (cacheCharts && !own[g][k - groups.start[g]].vertex.empty()) ownChart = &own[g][k - groups.start[g]];
+                    const Climb c = climber.run(current, v, &next[static_cast<size_t>(v) * s.width], ownChart);
                     result.modes[v] = c.mode;
                     passIterations[v] = c.iterations;
                     if (!c.converged) result.converged[v] = 0;
@@ -199,6 +219,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
     if (cacheFull) {  // over budget: later passes compute their charts again (same results)
       cacheCharts = false;
       cache = {};
+      own = {};
     }
     for (int v = 0; v < n; ++v) {
       result.iterations[v] += passIterations[v];
@@ -208,6 +229,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
     current.swap(next);
   }
 
+  for (const Climber& c : climbers) result.chartsComputed += c.chartsComputed();
   result.signal = AttributeSet(n);
   for (const Channel& c : s.channels) {
     std::vector<double> values(static_cast<size_t>(n) * c.dim);

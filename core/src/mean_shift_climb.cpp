@@ -35,18 +35,25 @@ Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& sig
     slot->vertex = u;
     slot->group = group;
     slot->pass = -1;
-    if (group >= 0) {  // the group's start chart (u is its anchor)
-      const double reach = groups_->reach[group];
-      chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + s_.drift + reach);
-      slot->chart.reach = reach;
-      slot->reach = reach + s_.drift;
+    // The same log map when computed before, by any worker.
+    const Chart* kept = nullptr;
+    if (group >= 0 && groupCharts_ && (*groupReady_)[group].load(std::memory_order_acquire))
+      kept = &(*groupCharts_)[group];
+    else if (store_)
+      kept = store_->find(u, group);
+    if (kept) {
+      slot->chart = *kept;
     } else {
-      // Wide enough for the kernel around any point of u's faces plus the drift allowance.
-      double longest = 0;
-      s_.mesh.forEachOutgoing(u, [&](int h) { longest = std::max(longest, s_.geometry.length(h)); });
-      slot->reach = s_.drift + longest;
-      chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + slot->reach);
+      if (group >= 0) {  // the group's start chart (u is its anchor)
+        chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + s_.drift + groups_->reach[group]);
+        slot->chart.reach = groups_->reach[group];
+      } else {  // wide enough for the kernel about any point of u's faces plus the drift allowance
+        chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + s_.drift + longestEdgeAt(u));
+        slot->chart.reach = longestEdgeAt(u);
+      }
+      if (store_ && store_->computedBefore(u, group)) store_->keep(u, group, slot->chart);
     }
+    slot->reach = slot->chart.reach + s_.drift;
   }
   if (s_.loop != Setup::Loop::General && slot->pass != pass_) {
     gather(slot->samples, slot->chart, signal);
@@ -54,6 +61,27 @@ Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& sig
   }
   slot->used = ++clock_;
   return *slot;
+}
+
+double Climber::longestEdgeAt(int u) const {
+  double longest = 0;
+  s_.mesh.forEachOutgoing(u, [&](int h) { longest = std::max(longest, s_.geometry.length(h)); });
+  return longest;
+}
+
+Chart Climber::vertexStartChart(int v) {
+  Chart chart;
+  if (s_.mesh.isIsolated(v)) return chart;
+  // Wide enough for the kernel around any point of v's faces plus the drift allowance.
+  chart.reach = longestEdgeAt(v);
+  chartAt(chart, SurfacePoint::atVertex(s_.mesh, v), s_.r + s_.drift + chart.reach);
+  return chart;
+}
+
+bool Climber::startsInAnchor(int v) const {
+  const int slot = anchor_ ? slot_[v] : -1;
+  return slot >= 0 && anchor_->x[slot] * anchor_->x[slot] + anchor_->y[slot] * anchor_->y[slot] <=
+                          anchor_->reach * anchor_->reach;
 }
 
 bool Climber::locate(const Chart& chart, const Mesh& mesh, const SurfacePoint& p, Vec2& q) {
@@ -83,6 +111,7 @@ Vec2 Climber::inVertexChart(int u, const SurfacePoint& p) const {
 }
 
 void Climber::chartAt(Chart& chart, const SurfacePoint& base, double radius) {
+  ++charts_;
   chart.base = base;
   const std::vector<LogMapEntry>& entries = logMap.compute(base, radius);
   const size_t n = entries.size();
@@ -245,7 +274,7 @@ void Climber::generalSums(const Chart& chart, const std::vector<double>& signal,
   });
 }
 
-Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
+Climb Climber::run(const std::vector<double>& signal, int v, double* out, const Chart* start) {
   const int width = s_.width;
   const double* own = &signal[static_cast<size_t>(v) * width];
   Climb result;
@@ -259,8 +288,8 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
   const bool fast = s_.loop != Setup::Loop::General;
   double qx = 0, qy = 0;  // the iterate in `chart`
   double reach = s_.drift;  // how far from the chart's centre the iterate may go before a new chart
-  const int slot = anchor_ ? slot_[v] : -1;
-  if (slot >= 0 && anchor_->x[slot] * anchor_->x[slot] + anchor_->y[slot] * anchor_->y[slot] <= anchor_->reach * anchor_->reach) {
+  if (startsInAnchor(v)) {
+    const int slot = slot_[v];
     chart = anchor_;
     samples = pinned_ ? &pinned_->samples : &anchorSamples_;  // the cached chart's are gathered
     if (fast && !pinned_ && !anchorGathered_) {  // once per anchor and signal: the group's vertices share it
@@ -270,6 +299,10 @@ Climb Climber::run(const std::vector<double>& signal, int v, double* out) {
     qx = anchor_->x[slot];
     qy = anchor_->y[slot];
     reach = anchor_->reach + s_.drift;
+  } else if (start) {
+    chart = start;
+    if (fast) gather(localSamples_, *start, signal);
+    reach = start->reach + s_.drift;
   } else if (!s_.exact) {
     VertexChart& c = vertexChart(v, signal);
     chart = &c.chart;

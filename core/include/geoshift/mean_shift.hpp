@@ -65,8 +65,10 @@ struct MeanShiftOptions {
   // this, a = the farthest an iterate may start and drift from the chart's centre. A chart's
   // distances are then off by about K·a²/6 relative. 0: cubes of chartCell only.
   double chartDistortion = 0.1;
-  // Blurring passes keep the start charts between passes up to this many bytes (then compute
-  // them again each pass; results are the same either way).
+  // Blurring passes keep their start charts between passes up to this many bytes (beyond, they
+  // compute them again each pass), and up to a quarter of it more keeps the charts that climbs
+  // computed for later climbs, which copy them instead of computing them again. Results are the
+  // same either way; 0 keeps none.
   long long chartCacheBytes = 1LL << 30;
   // Samples weighted by their vertex area (a third of the adjacent faces' areas): the density is
   // then one of the surface, not of the vertex sampling, so an iterate does not wander toward
@@ -99,6 +101,7 @@ struct MeanShiftResult {
   int threads = 1;
   double seconds = 0;
   int startCharts = 0;  // shared start charts (groups of vertices) per pass; 0 without chartCell
+  long long chartsComputed = 0;  // log maps computed for charts, all passes and threads
 };
 
 // Filters the signal over the support surface. The support's mesh gives the vertices, their
