@@ -1,16 +1,21 @@
-// Mean shift with the paper's parameter sets (ALGORITHMS.md §0.4) on tori of 10k and 100k vertices,
-// on one thread and on all: milliseconds per vertex (the paper's Table 2 works out to about 1 ms per
+// Mean shift with the paper's parameter sets (ALGORITHMS.md §0.4) on tori of 10k and 100k vertices
+// and on terrains (procedural, and real LiDAR when ../shared/data is there), on one thread and on all: milliseconds per vertex (the paper's Table 2 works out to about 1 ms per
 // vertex for MS and 3 ms for BMS on one 3 GHz thread; our target is 20× less per thread).
 // Arguments: workload, vertices (10k / 100k), threads (1 / 0 = all), charts (0 shared, the default /
-// 1 exact / 2 shared over cubes of chartCell only, chartDistortion = 0).
-// Counters: ms_per_vertex (wall time / vertices), iterations (mean per vertex per pass), converged.
+// 1 exact / 2 shared over cubes of chartCell only, chartDistortion = 0 / 3 no charts kept beyond a
+// worker's own cache, chartCacheBytes = 0).
+// Counters: ms_per_vertex (wall time / vertices), iterations (mean per vertex per pass), converged,
+// start_charts (groups), log_maps (charts computed, all passes).
 // Every run filters every vertex of the mesh once (one benchmark iteration).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "geoshift/geometry.hpp"
 #include "geoshift/mean_shift.hpp"
@@ -92,16 +97,18 @@ void BM_MeanShift(benchmark::State& state) {
   o.parallel.threads = static_cast<int>(state.range(2));
   o.exactCharts = state.range(3) == 1;
   if (state.range(3) == 2) o.chartDistortion = 0;
+  if (state.range(3) == 3) o.chartCacheBytes = 0;
   MeanShiftResult r;
   for (auto _ : state) r = meanShift(f.geometry, *signal, o);
   const int n = f.mesh.vertexCount();
   state.SetLabel(std::string(kNames[workload]) + (o.exactCharts ? " exact" : "") +
-                 (state.range(3) == 2 ? " unmerged" : "") + " threads=" + std::to_string(r.threads));
+                 (state.range(3) == 2 ? " unmerged" : state.range(3) == 3 ? " nothing kept" : "") + " threads=" + std::to_string(r.threads));
   state.counters["ms_per_vertex"] = benchmark::Counter(r.seconds * 1e3 / n);
   state.counters["iterations"] = benchmark::Counter(r.meanIterations);
   state.counters["converged"] = benchmark::Counter(r.convergedFraction);
   state.counters["vertices"] = benchmark::Counter(n);
   state.counters["start_charts"] = benchmark::Counter(r.startCharts);
+  state.counters["log_maps"] = benchmark::Counter(static_cast<double>(r.chartsComputed));
 }
 
 // The terrain sets on what the paper times them on: a terrain's coarse mesh after six wavelet
@@ -109,18 +116,18 @@ void BM_MeanShift(benchmark::State& state) {
 // terrain's (10,946 vertices), with its vegetation height. Its hills are a few h_s across, so
 // climbs go much farther than on the torus. Arguments: workload (2 terrain-ms, 3 terrain-bms),
 // threads (1 / 0 = all).
+// A terrain's attributes analysed to six wavelet levels as the terrain presets do (`geoshift filter
+// --preset terrain-*`): the coarse mesh and its lifted attributes.
 struct TerrainFixture {
   Multiresolution mr;
   std::unique_ptr<SurfaceGeometry> geometry;
-  TerrainFixture() {
-    TerrainOptions t;
-    t.size = 320;
-    t.seed = 1;
-    const TerrainMesh terrain = proceduralTerrain(t);
+  TerrainFixture(const TerrainMesh& terrain, const std::vector<std::string>& names) {
     const Mesh mesh = buildMesh(terrain.soup()).mesh;
     AttributeSet signal(mesh.vertexCount());
-    const Attribute& v = terrain.attributes.get("_VEGETATION_HEIGHT");
-    signal.set(v.name, 1, AttributeKind::Euclidean, v.values);
+    for (const std::string& name : names) {
+      const Attribute& a = terrain.attributes.get(name);
+      signal.set(a.name, 1, AttributeKind::Euclidean, a.values);
+    }
     WaveletOptions w;
     w.levels = 6;
     mr = analyze(mesh, signal, w);
@@ -128,27 +135,64 @@ struct TerrainFixture {
   }
 };
 
+// A 320 × 320 procedural terrain and its vegetation height.
+const TerrainFixture& proceduralFixture() {
+  static const TerrainFixture f = [] {
+    TerrainOptions t;
+    t.size = 320;
+    t.seed = 1;
+    return TerrainFixture(proceduralTerrain(t), {"_VEGETATION_HEIGHT"});
+  }();
+  return f;
+}
+
+// Real LiDAR: PDAL's autzen_trim.las (110k points of a town's edge: ground, trees, roofs) from
+// ../shared/data, triangulated as `geoshift terrain` does, with the height above ground and the
+// class as `--signal terrain` filters them; null when the shared data is absent.
+const TerrainFixture* lidarFixture() {
+  static const std::unique_ptr<TerrainFixture> f = []() -> std::unique_ptr<TerrainFixture> {
+    const std::string path = std::string(GEOSHIFT_SHARED_DATA) + "/pdal_testdata/las/autzen_trim.las";
+    if (!std::ifstream(path)) return nullptr;
+    return std::make_unique<TerrainFixture>(pointTerrain(readLas(path)), std::vector<std::string>{"_HEIGHT_ABOVE_GROUND", "_CLASS"});
+  }();
+  return f.get();
+}
+
+// Arguments: workload (2 terrain-ms, 3 terrain-bms), threads (1 / 0 = all), data (0 procedural,
+// 1 LiDAR).
 void BM_MeanShiftTerrain(benchmark::State& state) {
-  static const TerrainFixture f;
+  const bool lidar = state.range(2) == 1;
+  const TerrainFixture* found = lidar ? lidarFixture() : &proceduralFixture();
+  if (!found) {
+    state.SkipWithError("../shared/data/pdal_testdata/las/autzen_trim.las not found (shared data absent)");
+    return;
+  }
+  const TerrainFixture& f = *found;
   const int workload = static_cast<int>(state.range(0));
   MeanShiftOptions o = filterPreset(kNames[workload]).options;
   o.parallel.threads = static_cast<int>(state.range(1));
   MeanShiftResult r;
   for (auto _ : state) r = meanShift(*f.geometry, f.mr.coarseAttributes, o);
   const int n = f.mr.coarse.vertexCount();
-  state.SetLabel(std::string(kNames[workload]) + " terrain threads=" + std::to_string(r.threads));
+  state.SetLabel(std::string(kNames[workload]) + (lidar ? " autzen LiDAR" : " terrain") +
+                 " threads=" + std::to_string(r.threads));
   state.counters["ms_per_vertex"] = benchmark::Counter(r.seconds * 1e3 / n);
   state.counters["iterations"] = benchmark::Counter(r.meanIterations);
   state.counters["converged"] = benchmark::Counter(r.convergedFraction);
   state.counters["vertices"] = benchmark::Counter(n);
   state.counters["start_charts"] = benchmark::Counter(r.startCharts);
+  state.counters["log_maps"] = benchmark::Counter(static_cast<double>(r.chartsComputed));
 }
 
 BENCHMARK(BM_MeanShiftTerrain)
-    ->Args({2, 1})
-    ->Args({2, 0})
-    ->Args({3, 1})
-    ->Args({3, 0})
+    ->Args({2, 1, 0})
+    ->Args({2, 0, 0})
+    ->Args({3, 1, 0})
+    ->Args({3, 0, 0})
+    ->Args({2, 1, 1})
+    ->Args({2, 0, 1})
+    ->Args({3, 1, 1})
+    ->Args({3, 0, 1})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
@@ -161,6 +205,8 @@ void arguments(benchmark::internal::Benchmark* b) {
   // 100k vertices: the color and denoising sets; the wider kernels take minutes a run there.
   for (int workload = 0; workload < 2; ++workload)
     for (int threads : {1, 0}) b->Args({workload, 100000, threads, 0});
+  // What keeping charts for later climbs and passes saves (blurring passes: the cubes' charts too).
+  for (int workload : {2, 3}) b->Args({workload, 10000, 1, 3});
   // What merging the cubes of flat regions saves (the 100k torus is flat enough; the 10k one is not).
   for (int workload = 0; workload < 2; ++workload) b->Args({workload, 100000, 1, 2});
 }
