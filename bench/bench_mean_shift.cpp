@@ -1,6 +1,7 @@
 // Mean shift with the paper's parameter sets (ALGORITHMS.md §0.4) on tori of 10k and 100k vertices
-// and on terrains (procedural, and real LiDAR when ../shared/data is there), on one thread and on all: milliseconds per vertex (the paper's Table 2 works out to about 1 ms per
-// vertex for MS and 3 ms for BMS on one 3 GHz thread; our target is 20× less per thread).
+// and on terrains (procedural, and real LiDAR when ../shared/data is there), on one thread and on
+// all: milliseconds per vertex (the paper's Table 2 works out to about 1 ms per vertex for MS and
+// 3 ms for BMS on one 3 GHz thread; our target is 20× less per thread).
 // Arguments: workload, vertices (10k / 100k), threads (1 / 0 = all), charts (0 shared, the default /
 // 1 exact / 2 shared over cubes of chartCell only, chartDistortion = 0 / 3 no charts kept beyond a
 // worker's own cache, chartCacheBytes = 0).
