@@ -218,14 +218,19 @@ class Climber {
 
   // The signal rows and sample weights of a chart's entries in the chart's order, one array per
   // dimension (value[d * stride + e]), so that the kernel loop reads memory in sequence. Single
-  // precision (Setup::singlePrecision) keeps its own copies: the chart's coordinates in units of h_s,
-  // weights over their mean, and values less `offset` (their mean over the chart, Gaussian loops).
+  // precision (Setup::singlePrecision) keeps its own copies, scaled so that the kernel's exponent in
+  // base 2 is a plain sum of squares: coordinates times kSpatialScale / h_s, weights over their mean,
+  // and values less `offset` (their mean over the chart) times `scale` (√(log2 e / 2h_r²); Gaussian
+  // loops).
   struct Samples {
     std::vector<double> weight, value;
     std::vector<float> fx, fy, fweight, fvalue;
     double offset[4] = {};
+    double scale[4] = {1, 1, 1, 1};
     size_t stride = 0;
   };
+  // √(log2 e / 2): a distance in units of h_s times this, squared, is the spatial exponent in base 2.
+  static constexpr double kSpatialScale = 0.84932180028801904272;
 
  private:
   std::vector<int> order_, fill_;         // scratch of chartAt: cell of each entry, next slot of each cell
