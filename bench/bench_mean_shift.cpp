@@ -103,7 +103,8 @@ void BM_MeanShift(benchmark::State& state) {
   for (auto _ : state) r = meanShift(f.geometry, *signal, o);
   const int n = f.mesh.vertexCount();
   state.SetLabel(std::string(kNames[workload]) + (o.exactCharts ? " exact" : "") +
-                 (state.range(3) == 2 ? " unmerged" : state.range(3) == 3 ? " nothing kept" : "") + " threads=" + std::to_string(r.threads));
+                 (state.range(3) == 2 ? " unmerged" : state.range(3) == 3 ? " nothing kept" : "") +
+                 " threads=" + std::to_string(r.threads));
   state.counters["ms_per_vertex"] = benchmark::Counter(r.seconds * 1e3 / n);
   state.counters["iterations"] = benchmark::Counter(r.meanIterations);
   state.counters["converged"] = benchmark::Counter(r.convergedFraction);
@@ -154,7 +155,8 @@ const TerrainFixture* lidarFixture() {
   static const std::unique_ptr<TerrainFixture> f = []() -> std::unique_ptr<TerrainFixture> {
     const std::string path = std::string(GEOSHIFT_SHARED_DATA) + "/pdal_testdata/las/autzen_trim.las";
     if (!std::ifstream(path)) return nullptr;
-    return std::make_unique<TerrainFixture>(pointTerrain(readLas(path)), std::vector<std::string>{"_HEIGHT_ABOVE_GROUND", "_CLASS"});
+    return std::make_unique<TerrainFixture>(pointTerrain(readLas(path)),
+                                            std::vector<std::string>{"_HEIGHT_ABOVE_GROUND", "_CLASS"});
   }();
   return f.get();
 }

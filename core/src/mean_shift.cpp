@@ -207,8 +207,8 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
                   }
                   for (int k = groups.start[g]; k < groups.start[g + 1]; ++k) {
                     const int v = groups.vertex[k];
-                    const Chart* ownChart = nullptr;
-                    if (cacheCharts && !own[g][k - groups.start[g]].vertex.empty()) ownChart = &own[g][k - groups.start[g]];
+                    const Chart* ownChart = cacheCharts ? &own[g][k - groups.start[g]] : nullptr;
+                    if (ownChart && ownChart->vertex.empty()) ownChart = nullptr;  // starts in the group's
                     const Climb c = climber.run(current, v, &next[static_cast<size_t>(v) * s.width], ownChart);
                     result.modes[v] = c.mode;
                     passIterations[v] = c.iterations;

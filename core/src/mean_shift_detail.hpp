@@ -110,8 +110,8 @@ Groups groupVertices(const Setup& setup);
 
 // Charts that workers computed more than once, kept for the rest of the filter (every climb and
 // pass): a worker whose own cache evicted such a chart copies it from here instead of computing the
-// log map yet again. Within a byte budget (MeanShiftOptions::chartCacheBytes); results never depend on what is
-// kept. Thread-safe; a kept chart is never changed or removed.
+// log map yet again. Within a byte budget (a quarter of MeanShiftOptions::chartCacheBytes); results
+// never depend on what is kept. Thread-safe; a kept chart is never changed or removed.
 class ChartStore {
  public:
   ChartStore(int vertices, int groups, std::atomic<long long>& used, long long budget)
@@ -218,10 +218,10 @@ class Climber {
 
   // The signal rows and sample weights of a chart's entries in the chart's order, one array per
   // dimension (value[d * stride + e]), so that the kernel loop reads memory in sequence. Single
-  // precision (Setup::singlePrecision) keeps its own copies, scaled so that the kernel's exponent in
-  // base 2 is a plain sum of squares: coordinates times kSpatialScale / h_s, weights over their mean,
-  // and values less `offset` (their mean over the chart) times `scale` (√(log2 e / 2h_r²); Gaussian
-  // loops).
+  // precision (Setup::singlePrecision) keeps its own copies: coordinates in units of h_s, weights
+  // over their mean. Gaussian loops: values less `offset` (their mean over the chart) times `scale`
+  // (√(log2 e / 2h_r²)), and coordinates times kSpatialScale, so that the kernel's exponent in base 2
+  // is a plain sum of squares.
   struct Samples {
     std::vector<double> weight, value;
     std::vector<float> fx, fy, fweight, fvalue;

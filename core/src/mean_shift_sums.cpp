@@ -103,7 +103,7 @@ template <class T>
 // 2^−a for a in [0, kMaxExponent2], single precision (Gaussian range kernels, whose exponents the
 // scaled samples give in base 2: Climber::Samples). No reduction by ln 2: n = round(−a), t = −a − n
 // in [−1/2, 1/2] exactly, 2^t = e^(t ln 2) by its degree-7 Taylor polynomial (truncation below 6e-9
-// relative, under the format's own rounding); 1.2× faster a loop than e^−a of the scaled exponent.
+// relative, under the format's own rounding). The loop runs 1.2× faster than with e^−a.
 [[gnu::always_inline]] inline Lanes<float>::Vec exp2Negative(Lanes<float>::Vec a) {
   using Vec = Lanes<float>::Vec;
   using Bits = Lanes<float>::Bits;
