@@ -171,7 +171,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   std::vector<std::vector<Chart>> own(cacheCharts ? groupCount : 0);
   std::atomic<long long> cached{0}, stored{0};  // bytes of the charts kept here and in the store
   std::atomic<bool> cacheFull{false};
-  ChartStore store(n, groupCount, stored, options.chartCacheBytes / 4);
+  ChartStore store(n, groupCount, stored, options.chartCacheBytes / 4, options.passes > 1);
   if (!s.exact && options.chartCacheBytes > 0)
     for (Climber& c : climbers) c.setStore(&store);
   std::vector<int> passIterations(n);

@@ -51,7 +51,7 @@ Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& sig
         chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + s_.drift + longestEdgeAt(u));
         slot->chart.reach = longestEdgeAt(u);
       }
-      if (store_ && store_->computedBefore(u, group)) store_->keep(u, group, slot->chart);
+      if (store_ && store_->worthKeeping(u, group)) store_->keep(u, group, slot->chart);
     }
     slot->reach = slot->chart.reach + s_.drift;
   }

@@ -114,14 +114,16 @@ Groups groupVertices(const Setup& setup);
 // never depend on what is kept. Thread-safe; a kept chart is never changed or removed.
 class ChartStore {
  public:
-  ChartStore(int vertices, int groups, std::atomic<long long>& used, long long budget)
+  // keepFirst: keep every chart (blurring passes, which climb through the same neighbourhoods
+  // again), else only those computed a second time.
+  ChartStore(int vertices, int groups, std::atomic<long long>& used, long long budget, bool keepFirst)
       : byVertex_(vertices), byGroup_(groups), seenVertex_(vertices), seenGroup_(groups), used_(used),
-        budget_(budget) {}
-  // Whether the chart at v (group < 0) or group's was computed before: only those are kept, since
-  // most charts serve the climbs of one neighbourhood and are never needed again (copying them
-  // all made the color set 3-4% slower).
-  bool computedBefore(int v, int group) {
-    return (group >= 0 ? seenGroup_[group] : seenVertex_[v]).exchange(true, std::memory_order_relaxed);
+        budget_(budget), keepFirst_(keepFirst) {}
+  // Whether to keep the chart at v (group < 0) or group's that a worker just computed: in one pass,
+  // most charts serve the climbs of one neighbourhood and are never needed again (copying them all
+  // made the color set 3-4% slower), so only one computed before is.
+  bool worthKeeping(int v, int group) {
+    return (group >= 0 ? seenGroup_[group] : seenVertex_[v]).exchange(true, std::memory_order_relaxed) || keepFirst_;
   }
   // The chart at vertex v (group < 0) or group's start chart, or null.
   const Chart* find(int v, int group) const {
@@ -153,6 +155,7 @@ class ChartStore {
   std::vector<std::atomic<bool>> seenVertex_, seenGroup_;
   std::atomic<long long>& used_;
   long long budget_;
+  bool keepFirst_;
 };
 
 // Calls run(begin, end) for each row of cells that the disc of radius r about (qx, qy) meets, over
