@@ -108,9 +108,9 @@ struct Groups {
 };
 Groups groupVertices(const Setup& setup);
 
-// Charts that workers computed more than once, kept for the rest of the filter (every climb and
-// pass): a worker whose own cache evicted such a chart copies it from here instead of computing the
-// log map yet again. Within a byte budget (a quarter of MeanShiftOptions::chartCacheBytes); results
+// Charts that workers computed (in one pass, those computed twice), kept for the rest of the filter
+// (every climb and pass): a worker whose own cache evicted such a chart copies it from here instead
+// of computing the log map again. Within a byte budget (a quarter of MeanShiftOptions::chartCacheBytes); results
 // never depend on what is kept. Thread-safe; a kept chart is never changed or removed.
 class ChartStore {
  public:

@@ -66,9 +66,9 @@ struct MeanShiftOptions {
   // distances are then off by about K·a²/6 relative. 0: cubes of chartCell only.
   double chartDistortion = 0.1;
   // Blurring passes keep their start charts between passes up to this many bytes (beyond, they
-  // compute them again each pass), and up to a quarter of it more keeps every chart that climbs
-  // computed twice, for later climbs to copy instead of computing it again. Results are the same
-  // either way; 0 keeps none.
+  // compute them again each pass), and up to a quarter of it more keeps the charts that climbs
+  // computed (in one pass, those computed twice) for later climbs to copy instead of computing them
+  // again. Results are the same either way; 0 keeps none.
   long long chartCacheBytes = 1LL << 30;
   // Samples weighted by their vertex area (a third of the adjacent faces' areas): the density is
   // then one of the surface, not of the vertex sampling, so an iterate does not wander toward
