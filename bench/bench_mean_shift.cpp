@@ -75,6 +75,16 @@ const Fixture& fixture(int vertices) {
 // (curvature sets on the vegetation scalar: same bandwidths, the signal's scale does not change the cost much).
 const char* const kNames[] = {"color", "denoise-normals", "terrain-ms", "terrain-bms", "curvature-ms", "curvature-bms"};
 
+// The counters of a filter run over n vertices (see the header).
+void report(benchmark::State& state, const MeanShiftResult& r, int n) {
+  state.counters["ms_per_vertex"] = benchmark::Counter(r.seconds * 1e3 / n);
+  state.counters["iterations"] = benchmark::Counter(r.meanIterations);
+  state.counters["converged"] = benchmark::Counter(r.convergedFraction);
+  state.counters["vertices"] = benchmark::Counter(n);
+  state.counters["start_charts"] = benchmark::Counter(r.startCharts);
+  state.counters["log_maps"] = benchmark::Counter(static_cast<double>(r.chartsComputed));
+}
+
 void BM_MeanShift(benchmark::State& state) {
   const int workload = static_cast<int>(state.range(0));
   const Fixture& f = fixture(static_cast<int>(state.range(1)));
@@ -105,12 +115,7 @@ void BM_MeanShift(benchmark::State& state) {
   state.SetLabel(std::string(kNames[workload]) + (o.exactCharts ? " exact" : "") +
                  (state.range(3) == 2 ? " unmerged" : state.range(3) == 3 ? " nothing kept" : "") +
                  " threads=" + std::to_string(r.threads));
-  state.counters["ms_per_vertex"] = benchmark::Counter(r.seconds * 1e3 / n);
-  state.counters["iterations"] = benchmark::Counter(r.meanIterations);
-  state.counters["converged"] = benchmark::Counter(r.convergedFraction);
-  state.counters["vertices"] = benchmark::Counter(n);
-  state.counters["start_charts"] = benchmark::Counter(r.startCharts);
-  state.counters["log_maps"] = benchmark::Counter(static_cast<double>(r.chartsComputed));
+  report(state, r, n);
 }
 
 // The terrain sets on what the paper times them on: a terrain's coarse mesh after six wavelet
@@ -179,12 +184,7 @@ void BM_MeanShiftTerrain(benchmark::State& state) {
   const int n = f.mr.coarse.vertexCount();
   state.SetLabel(std::string(kNames[workload]) + (lidar ? " autzen LiDAR" : " terrain") +
                  " threads=" + std::to_string(r.threads));
-  state.counters["ms_per_vertex"] = benchmark::Counter(r.seconds * 1e3 / n);
-  state.counters["iterations"] = benchmark::Counter(r.meanIterations);
-  state.counters["converged"] = benchmark::Counter(r.convergedFraction);
-  state.counters["vertices"] = benchmark::Counter(n);
-  state.counters["start_charts"] = benchmark::Counter(r.startCharts);
-  state.counters["log_maps"] = benchmark::Counter(static_cast<double>(r.chartsComputed));
+  report(state, r, n);
 }
 
 BENCHMARK(BM_MeanShiftTerrain)

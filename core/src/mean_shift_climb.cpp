@@ -47,9 +47,8 @@ Climber::VertexChart& Climber::vertexChart(int u, const std::vector<double>& sig
       if (group >= 0) {  // the group's start chart (u is its anchor)
         chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + s_.drift + groups_->reach[group]);
         slot->chart.reach = groups_->reach[group];
-      } else {  // wide enough for the kernel about any point of u's faces plus the drift allowance
-        chartAt(slot->chart, SurfacePoint::atVertex(s_.mesh, u), s_.r + s_.drift + longestEdgeAt(u));
-        slot->chart.reach = longestEdgeAt(u);
+      } else {
+        vertexChartAt(slot->chart, u);
       }
       if (store_ && store_->worthKeeping(u, group)) store_->keep(u, group, slot->chart);
     }
@@ -69,12 +68,15 @@ double Climber::longestEdgeAt(int u) const {
   return longest;
 }
 
-Chart Climber::vertexStartChart(int v) {
-  Chart chart;
-  if (s_.mesh.isIsolated(v)) return chart;
+void Climber::vertexChartAt(Chart& chart, int v) {
   // Wide enough for the kernel around any point of v's faces plus the drift allowance.
   chart.reach = longestEdgeAt(v);
   chartAt(chart, SurfacePoint::atVertex(s_.mesh, v), s_.r + s_.drift + chart.reach);
+}
+
+Chart Climber::vertexStartChart(int v) {
+  Chart chart;
+  if (!s_.mesh.isIsolated(v)) vertexChartAt(chart, v);
   return chart;
 }
 

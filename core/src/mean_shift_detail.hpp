@@ -277,6 +277,8 @@ class Climber {
   // p's coordinates in a chart from its face's corners, when all three are in it.
   static bool locate(const Chart& chart, const Mesh& mesh, const SurfacePoint& p, Vec2& q);
   double longestEdgeAt(int u) const;
+  // The chart at vertex v (reach: v's longest edge), into `chart`'s storage.
+  void vertexChartAt(Chart& chart, int v);
   // p in the chart of its face's corner u (the corner's one-ring unfolded as its polar coordinates).
   Vec2 inVertexChart(int u, const SurfacePoint& p) const;
 
