@@ -27,14 +27,16 @@ using namespace logmap_detail;  // private to this file and logmap_detail.hpp
 // What every solver of one mesh reads and none writes: built once, shared by LogMap::fork().
 struct LogMap::Tables {
   // The solver works in its own vertex numbering, sorted along a Morton curve of the positions, so
-  // that a front (a small disc of the surface) reads a few runs of neighbouring values and fans
+  // that a front (a small disc of the surface) reads a few runs of neighbouring values and rings
   // instead of lines scattered over a large mesh. Mesh ids go in only at the seeds (inner) and come
-  // back only in the output (outer).
+  // back only in the output (Ring::meshVertex).
   std::vector<int> inner, outer;
-  // Each vertex's faces in the counter-clockwise order of its outgoing half-edges from halfedge(v),
-  // as the run() loop visits them; by internal vertex.
-  std::vector<int> fanStart;
-  std::vector<FanFace> fan;
+  // Each vertex's ring, by internal vertex: its neighbours counter-clockwise from the head of
+  // halfedge(v), as the run() loop visits its faces. Rings of more than kInlineSlots neighbours
+  // keep them in the overflow arrays.
+  std::vector<Ring> ring;
+  std::vector<std::int32_t> overflowIds;
+  std::vector<RingSlot> overflowSlots;
 
   explicit Tables(const SurfaceGeometry& g) {
     const Mesh& mesh = g.mesh();
@@ -42,29 +44,38 @@ struct LogMap::Tables {
     renumber(mesh);
     std::vector<double> twiceArea(nf);
     for (int f = 0; f < nf; ++f) twiceArea[f] = faceRecord(g, f).twiceArea;
-    fanStart.resize(nv + 1);
-    fan.reserve(3 * static_cast<size_t>(nf));
+    ring.resize(nv);
+    std::vector<std::int32_t> ids;
+    std::vector<RingSlot> slots;
     for (int c = 0; c < nv; ++c) {
-      fanStart[c] = static_cast<int>(fan.size());
+      Ring& r = ring[c];
+      r.meshVertex = outer[c];
       const int start = mesh.halfedge(outer[c]);
       if (start < 0) continue;  // isolated: never reached
+      ids.clear();
+      slots.clear();
       int h = start;
       do {
-        const int next = Mesh::next(h), prev = Mesh::prev(h);
-        FanFace e;
-        e.head = inner[mesh.head(h)];
-        e.apex = inner[mesh.tail(prev)];
-        e.dHead = g.length(h);
-        e.dApex = g.length(prev);
-        e.dOpp = g.length(next);
-        e.twiceArea = twiceArea[h / 3];
-        e.inv2dHead = 0.5 / e.dHead;
-        e.inv2dApex = 0.5 / e.dApex;
-        fan.push_back(e);
+        const int prev = Mesh::prev(h);
+        ids.push_back(inner[mesh.head(h)]);
+        slots.push_back({g.length(h), 0.5 / g.length(h), g.length(Mesh::next(h)), twiceArea[h / 3]});
         h = mesh.ccwOutgoing(h);
+        if (h < 0) {  // past the last face: its apex ends the open ring
+          ids.push_back(inner[mesh.tail(prev)]);
+          slots.push_back({g.length(prev), 0.5 / g.length(prev), 0.0, 0.0});
+          r.open = 1;
+        }
       } while (h >= 0 && h != start);
+      r.slots = static_cast<int>(ids.size());
+      if (r.slots <= kInlineSlots) {
+        std::copy(ids.begin(), ids.end(), r.n);
+        std::copy(slots.begin(), slots.end(), r.s);
+      } else {
+        r.overflow = static_cast<int>(overflowIds.size());
+        overflowIds.insert(overflowIds.end(), ids.begin(), ids.end());
+        overflowSlots.insert(overflowSlots.end(), slots.begin(), slots.end());
+      }
     }
-    fanStart[nv] = static_cast<int>(fan.size());
   }
 
   // Morton (Z-order) key of each vertex's position quantised to 21 bits an axis over the bounding
@@ -112,9 +123,7 @@ struct LogMap::Tables {
 struct LogMap::State {
   const Mesh& mesh;
   const std::vector<int>& inner;
-  const std::vector<int>& outer;
-  const std::vector<int>& fanStart;
-  const std::vector<FanFace>& fan;
+  const Tables& tables;
   // U and Θ of a vertex side by side: an update reads both of its edge's ends.
   struct Value {
     double U, theta;
@@ -125,7 +134,7 @@ struct LogMap::State {
   // last parent's right child always exists.
   std::vector<Queued> heap{Queued{kInf, -1}};
   size_t queued = 0;
-  std::vector<int> pending;                     // fan faces around c that had no known corner yet
+  std::vector<int> pending;                     // ring faces of c that had no known corner yet
   std::vector<DeferredAngle> deferred;          // a pending Θ is stored as −1 − its index here
   std::vector<Queued> popped;                   // valid pops within R, in pop order
   std::vector<LogMapEntry> entries, stray, merged;
@@ -133,8 +142,7 @@ struct LogMap::State {
   bool periodic = true;  // angles live on a circle (not at a boundary vertex source)
 
   State(const Mesh& m, const Tables& t)
-      : mesh(m), inner(t.inner), outer(t.outer), fanStart(t.fanStart), fan(t.fan),
-        value(m.vertexCount(), Value{kInf, 0.0}) {}
+      : mesh(m), inner(t.inner), tables(t), value(m.vertexCount(), Value{kInf, 0.0}) {}
 
   void begin(double r, bool circle) {
     for (int v : touched) value[v].U = kInf;
@@ -151,9 +159,12 @@ struct LogMap::State {
   void assign(int v, double u, double t) {
     if (value[v].U == kInf) {
       touched.push_back(v);
-      // v pops later, after a heap's worth of other work: start fetching its fan now, so that the
-      // pop does not wait on memory (the order of pops is data-dependent, the hardware cannot guess it).
-      for (int f = fanStart[v], last = fanStart[v + 1]; f < last; ++f) __builtin_prefetch(&fan[f]);
+      // v pops later, after a front's worth of other pops: fetch its ring now, so that the pop does
+      // not wait on memory (the order of pops is data-dependent, the hardware cannot guess it). The
+      // ring's address needs no load: a prefetch that waits for one (an offset into a table of
+      // rings) waits for the same cold memory it is meant to hide.
+      const char* const r = reinterpret_cast<const char*>(&tables.ring[v]);
+      for (size_t off = 0; off < sizeof(Ring); off += 64) __builtin_prefetch(r + off);
     }
     value[v].U = u;
     value[v].theta = t;
@@ -264,14 +275,16 @@ struct LogMap::State {
     return stored;
   }
 
-  // Face (c, head, apex) of c's fan: updates its apex from (c, head) and its head from (apex, c),
-  // each only from a partner below `partnerLimit`. Returns false when neither other corner is known yet.
-  [[gnu::always_inline]] bool relax(int c, const FanFace& f, double partnerLimit) {
-    const double Uhead = value[f.head].U, Uapex = value[f.apex].U;
+  // Face k = (c, n_k, n_k+1) of c's ring, whose slots are `h` (n_k's) and `a` (n_k+1's): updates its
+  // apex n_k+1 from (c, n_k) and its head n_k from (n_k+1, c), each only from a partner below
+  // `partnerLimit`. Returns false when neither other corner is known yet.
+  [[gnu::always_inline]] bool relax(int c, int head, int apex, const RingSlot& h, const RingSlot& a,
+                                    double partnerLimit) {
+    const double Uhead = value[head].U, Uapex = value[apex].U;
     if (Uhead == kInf && Uapex == kInf) return false;
     // Only from corners known on entry: one first derived just now from the other would only feed back.
-    if (Uhead < partnerLimit) update(c, f.head, f.apex, unfold(f.dHead, f.inv2dHead, f.dApex, f.dOpp, f.twiceArea));
-    if (Uapex < partnerLimit) update(f.apex, c, f.head, unfold(f.dApex, f.inv2dApex, f.dOpp, f.dHead, f.twiceArea));
+    if (Uhead < partnerLimit) update(c, head, apex, unfold(h.d, h.inv2d, a.d, h.dOpp, h.twiceArea));
+    if (Uapex < partnerLimit) update(apex, c, head, unfold(a.d, a.inv2d, h.dOpp, h.d, h.twiceArea));
     return true;
   }
 
@@ -285,13 +298,22 @@ struct LogMap::State {
       // its value after the inner end had popped, and would otherwise keep a fallback value.
       if (u <= radius) popped.push_back({u, c});
       const double partnerLimit = u < radius ? kInf : radius;
+      const Ring& r = tables.ring[c];
+      const int m = r.slots, faces = m - r.open;
+      const bool inlined = m <= kInlineSlots;
+      const std::int32_t* const id = inlined ? r.n : tables.overflowIds.data() + r.overflow;
+      const RingSlot* const s = inlined ? r.s : tables.overflowSlots.data() + r.overflow;
       pending.clear();
-      const int first = fanStart[c], last = fanStart[c + 1];
-      for (int f = first; f < last; ++f)
-        if (!relax(c, fan[f], partnerLimit)) pending.push_back(f);
+      for (int k = 0; k < faces; ++k) {
+        const int kn = k + 1 == m ? 0 : k + 1;
+        if (!relax(c, id[k], id[kn], s[k], s[kn], partnerLimit)) pending.push_back(k);
+      }
       // Faces met before any of their corners was known, visited clockwise so that the values set
       // later in the lap propagate back around c (the lap's start is arbitrary).
-      for (auto it = pending.rbegin(); it != pending.rend(); ++it) relax(c, fan[*it], partnerLimit);
+      for (auto it = pending.rbegin(); it != pending.rend(); ++it) {
+        const int k = *it, kn = k + 1 == m ? 0 : k + 1;
+        relax(c, id[k], id[kn], s[k], s[kn], partnerLimit);
+      }
     }
   }
 
@@ -305,7 +327,7 @@ struct LogMap::State {
     stray.clear();
     for (const auto& [u, v] : popped) {
       if (value[v].U != u) continue;  // popped again later, at its final value
-      const LogMapEntry e{outer[v], u, theta(v)};
+      const LogMapEntry e{tables.ring[v].meshVertex, u, theta(v)};
       if (entries.empty() || !before(e, entries.back())) entries.push_back(e);
       else stray.push_back(e);
     }

@@ -1,8 +1,9 @@
 #pragma once
-// Private to logmap.cpp: the per-face records and the arithmetic of one DGPC triangle update
+// Private to logmap.cpp: the per-vertex ring records and the arithmetic of one DGPC triangle update
 // (ALGORITHMS.md §1), kept apart so that logmap.cpp holds the solver itself.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -21,7 +22,7 @@ constexpr double kEdgeBary = 1e-6;
 
 // One face of the mesh, as the seeding across an edge of the source face reads it.
 struct FaceRecord {
-  int vertex[3];  // tail of half-edge 3f + k (the fans come from State::fan, not from twins)
+  int vertex[3];  // tail of half-edge 3f + k
   double length[3];  // of half-edge 3f + k
   double twiceArea;
 };
@@ -47,18 +48,28 @@ inline FaceRecord faceRecord(const SurfaceGeometry& g, int f) {
   return r;
 }
 
-// One face around a vertex c, as everything the two updates of a pop need, in one 64-byte record:
-// the fan of c is read as one contiguous run (one or two streams of lines the hardware prefetches)
-// instead of a few faces scattered over the mesh, and the divisions of the unfoldings are done once.
-// Costs three records a face instead of one.
-struct alignas(64) FanFace {
-  int head, apex;  // internal ids; the face is (c, head, apex), counter-clockwise
-  double dHead;    // |head − c|
-  double dApex;    // |apex − c|
-  double dOpp;     // |apex − head|
-  double twiceArea;
-  double inv2dHead, inv2dApex;  // 0.5 / dHead, 0.5 / dApex
+// One neighbour n_k of a vertex c in its ring, and the face (c, n_k, n_k+1) that follows it
+// counter-clockwise (absent after the last neighbour of a boundary vertex's open ring).
+struct RingSlot {
+  double d;          // |n_k − c|
+  double inv2d;      // 0.5 / d
+  double dOpp;       // |n_k+1 − n_k|, the side of face k opposite c
+  double twiceArea;  // of face k
 };
+
+// A vertex's ring as a pop reads it, at a fixed stride so that its address needs no load (the
+// solver fetches it when the vertex first gets a value, long before it pops). Five cache lines;
+// larger rings live in the overflow arrays of LogMap::Tables.
+constexpr int kInlineSlots = 8;
+struct alignas(64) Ring {
+  std::int32_t slots = 0;     // neighbours n_0 .. n_slots-1
+  std::int32_t open = 0;      // 1 for a boundary vertex: no face after the last neighbour
+  std::int32_t meshVertex = -1;
+  std::int32_t overflow = 0;  // first overflow slot when slots > kInlineSlots
+  std::int32_t n[kInlineSlots] = {};  // internal vertex ids
+  RingSlot s[kInlineSlots] = {};
+};
+static_assert(sizeof(Ring) == 320);
 
 inline Unfolded unfold(const FaceRecord& r, int k) {
   const double d = r.length[k], lj = r.length[k == 0 ? 2 : k - 1], lk = r.length[k == 2 ? 0 : k + 1];

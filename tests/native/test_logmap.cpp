@@ -145,6 +145,59 @@ TEST_CASE("log map from a boundary vertex of the plane", "[logmap][plane][bounda
   }
 }
 
+TEST_CASE("log map through vertices of high valence is exact on flat fans", "[logmap][plane][valence]") {
+  // Flat fans whose centre has more neighbours than a ring record holds inline (the solver keeps
+  // those apart): a disc of 12 uneven sectors in two rings, whose centre is interior (a closed ring
+  // of 12), and a half-disc of 10 sectors whose centre sits on the boundary (an open ring of 11).
+  const auto fan = [](int sectors, double span) {
+    TriangleSoup soup;
+    soup.positions.push_back(Vec3::Zero());
+    const bool closed = span == 2 * kPi;
+    const int spokes = closed ? sectors : sectors + 1;
+    for (int r = 1; r <= 2; ++r)
+      for (int i = 0; i < spokes; ++i) {
+        const double phi = span * (i + 0.25 * std::sin(3.0 * i) * (closed || (i > 0 && i < sectors))) / sectors;
+        soup.positions.push_back(r * Vec3(std::cos(phi), std::sin(phi), 0));
+      }
+    for (int i = 0; i < sectors; ++i) {
+      const int a = 1 + i, b = 1 + (i + 1) % spokes;
+      soup.faces.push_back({0, a, b});
+      soup.faces.push_back({a, a + spokes, b + spokes});
+      soup.faces.push_back({a, b + spokes, b});
+    }
+    return soup;
+  };
+  const auto planar = [](const Mesh& mesh) { return [&mesh](int v) { return xy(mesh, v); }; };
+  const auto all = [](int) { return true; };
+  SECTION("interior centre of 12 neighbours, from the centre and from a face point") {
+    const Mesh mesh = build(fan(12, 2 * kPi));
+    REQUIRE(mesh.valence(0) == 12);
+    REQUIRE_FALSE(mesh.isBoundaryVertex(0));
+    CHECK(checkVertexSourceFlat(mesh, 0, 3.0, planar(mesh), all) == 24);
+    // From a point of an outer face: every vertex is reached straight, through or around the centre.
+    const SurfaceGeometry geometry(mesh);
+    LogMap logMap(geometry);
+    const int f = 3 * 5 + 1;  // the outer face of sector 5
+    const SurfacePoint p = SurfacePoint::inFace(mesh, f, Vec3(0.3, 0.3, 0.4));
+    const auto& entries = logMap.compute(p, 5.0);
+    REQUIRE(entries.size() == 25);
+    for (const LogMapEntry& e : entries) {
+      const Vec3 d = mesh.position(e.vertex) - p.position(mesh);
+      INFO("vertex " << e.vertex);
+      CHECK(std::abs(e.distance - d.norm()) < 1e-9);
+      CHECK((e.coords() - geometry.toFaceFrame(f, d)).norm() < 1e-9);
+    }
+  }
+  SECTION("boundary centre of 11 neighbours: angles in [0, π]") {
+    const Mesh mesh = build(fan(10, kPi));
+    REQUIRE(mesh.valence(0) == 11);
+    REQUIRE(mesh.isBoundaryVertex(0));
+    CHECK(checkVertexSourceFlat(mesh, 0, 3.0, planar(mesh), all) == 22);
+    // And from a vertex of the rim, whose straight lines to the far side pass by the centre.
+    CHECK(checkVertexSourceFlat(mesh, 1 + 11 + 5, 5.0, planar(mesh), all) == 22);
+  }
+}
+
 TEST_CASE("log map on a prism cylinder matches the unrolled plane", "[logmap][cylinder]") {
   const int sides = 16, rings = 41;
   const double height = 8;

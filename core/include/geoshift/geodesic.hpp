@@ -86,9 +86,9 @@ struct LogMapEntry {
 class LogMap {
  public:
   explicit LogMap(const SurfaceGeometry& geometry);
-  // A second solver on the same geometry that shares this one's read-only tables (the per-face
-  // records, a few dozen bytes a half-edge) and has its own buffers (16 bytes a vertex): one per
-  // thread. Solvers must not be shared between threads; forks may run concurrently.
+  // A second solver on the same geometry that shares this one's read-only tables (each vertex's
+  // ring of neighbours and faces, 320 bytes a vertex) and has its own buffers (16 bytes a vertex):
+  // one per thread. Solvers must not be shared between threads; forks may run concurrently.
   LogMap fork() const;
   // Polar coordinates of every vertex within `radius` (absolute units) of the source, in order of
   // increasing distance; the source vertex itself (if any) first with distance 0. Valid until the
