@@ -30,7 +30,7 @@ struct LogMap::Tables {
   // that a front (a small disc of the surface) reads a few runs of neighbouring values and rings
   // instead of lines scattered over a large mesh. Mesh ids go in only at the seeds (inner) and come
   // back only in the output (Ring::meshVertex).
-  std::vector<int> inner, outer;
+  std::vector<int> inner;
   // Each vertex's ring, by internal vertex: its neighbours counter-clockwise from the head of
   // halfedge(v), as the run() loop visits its faces. Rings of more than kInlineSlots neighbours
   // keep them in the overflow arrays.
@@ -41,16 +41,15 @@ struct LogMap::Tables {
   explicit Tables(const SurfaceGeometry& g) {
     const Mesh& mesh = g.mesh();
     const int nv = mesh.vertexCount(), nf = mesh.faceCount();
+    ring.resize(nv);
     renumber(mesh);
     std::vector<double> twiceArea(nf);
     for (int f = 0; f < nf; ++f) twiceArea[f] = faceRecord(g, f).twiceArea;
-    ring.resize(nv);
     std::vector<std::int32_t> ids;
     std::vector<RingSlot> slots;
     for (int c = 0; c < nv; ++c) {
       Ring& r = ring[c];
-      r.meshVertex = outer[c];
-      const int start = mesh.halfedge(outer[c]);
+      const int start = mesh.halfedge(r.meshVertex);
       if (start < 0) continue;  // isolated: never reached
       ids.clear();
       slots.clear();
@@ -110,9 +109,8 @@ struct LogMap::Tables {
     }
     std::sort(key.begin(), key.end());
     inner.resize(nv);
-    outer.resize(nv);
     for (int c = 0; c < nv; ++c) {
-      outer[c] = key[c].second;
+      ring[c].meshVertex = key[c].second;
       inner[key[c].second] = c;
     }
   }
@@ -303,17 +301,16 @@ struct LogMap::State {
       const bool inlined = m <= kInlineSlots;
       const std::int32_t* const id = inlined ? r.n : tables.overflowIds.data() + r.overflow;
       const RingSlot* const s = inlined ? r.s : tables.overflowSlots.data() + r.overflow;
-      pending.clear();
-      for (int k = 0; k < faces; ++k) {
+      const auto relaxFace = [&](int k) {
         const int kn = k + 1 == m ? 0 : k + 1;
-        if (!relax(c, id[k], id[kn], s[k], s[kn], partnerLimit)) pending.push_back(k);
-      }
+        return relax(c, id[k], id[kn], s[k], s[kn], partnerLimit);
+      };
+      pending.clear();
+      for (int k = 0; k < faces; ++k)
+        if (!relaxFace(k)) pending.push_back(k);
       // Faces met before any of their corners was known, visited clockwise so that the values set
       // later in the lap propagate back around c (the lap's start is arbitrary).
-      for (auto it = pending.rbegin(); it != pending.rend(); ++it) {
-        const int k = *it, kn = k + 1 == m ? 0 : k + 1;
-        relax(c, id[k], id[kn], s[k], s[kn], partnerLimit);
-      }
+      for (auto it = pending.rbegin(); it != pending.rend(); ++it) relaxFace(*it);
     }
   }
 
