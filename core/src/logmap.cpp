@@ -288,7 +288,9 @@ struct LogMap::State {
 
   void run() {
     while (queued > 0) {
-      const auto [u, c] = popMin();
+      const Queued top = popMin();
+      const double u = top.u;
+      const int c = top.vertex;  // a plain variable: Clang 14 cannot capture a structured binding
       if (u != value[c].U) continue;  // superseded by a later, smaller push
       // Push only if u < R (§1): a vertex of the ring just outside does not propagate outwards. It
       // still closes the faces it shares with an inner vertex, though: a vertex inside R next to
