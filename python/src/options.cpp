@@ -1,0 +1,203 @@
+#include "options.hpp"
+
+#include <algorithm>
+
+#include "geoshift/bilateral_normal.hpp"
+#include "geoshift/denoise.hpp"
+#include "geoshift/hybrid.hpp"
+#include "geoshift/mean_shift.hpp"
+#include "geoshift/terrain.hpp"
+
+namespace geoshift::python {
+
+namespace {
+
+// The property names of a bound options class (its fields), sorted.
+std::vector<std::string> fieldsOf(const py::handle& type) {
+  const py::object property = py::module_::import("builtins").attr("property");
+  std::vector<std::string> names;
+  for (const py::handle& name : py::module_::import("builtins").attr("dir")(type)) {
+    const std::string n = py::str(name);
+    if (n.empty() || n[0] == '_') continue;
+    if (py::isinstance(type.attr(name), property)) names.push_back(n);
+  }
+  return names;
+}
+
+py::dict toDict(const py::handle& self) {
+  py::dict out;
+  for (const std::string& name : fieldsOf(py::type::handle_of(self))) {
+    py::object value = self.attr(name.c_str());
+    if (py::hasattr(value, "to_dict")) {
+      value = value.attr("to_dict")();
+    } else if (py::isinstance<py::list>(value)) {
+      py::list items;
+      for (const py::handle& item : value) items.append(py::hasattr(item, "to_dict") ? item.attr("to_dict")() : py::reinterpret_borrow<py::object>(item));
+      value = items;
+    }
+    out[name.c_str()] = value;
+  }
+  return out;
+}
+
+// kwargs constructor, repr, equality by fields, to_dict and pickling (Dask ships options to workers).
+template <class T>
+py::class_<T> optionsClass(py::module_& m, const char* name, const char* doc) {
+  py::class_<T> c(m, name, doc);
+  c.def(py::init([](const py::kwargs& kw) {
+          T t;
+          applyOptions(py::cast(&t, py::return_value_policy::reference), kw);
+          return t;
+        }),
+        "Options with the library's defaults; keyword arguments set fields.");
+  c.def("to_dict", [](py::handle self) { return toDict(self); }, "The fields as a dict (nested options as dicts).");
+  c.def("__repr__", [name](py::handle self) {
+    std::string s = std::string(name) + "(";
+    bool first = true;
+    for (auto [k, v] : toDict(self)) {
+      s += (first ? "" : ", ") + std::string(py::str(k)) + "=" + std::string(py::repr(v));
+      first = false;
+    }
+    return s + ")";
+  });
+  c.def("__eq__", [](py::handle a, py::handle b) {
+    return py::type::handle_of(a).is(py::type::handle_of(b)) && toDict(a).equal(toDict(b));
+  });
+  c.def(py::pickle([](py::handle self) { return toDict(self); },
+                   [](const py::dict& d) {
+                     T t;
+                     applyOptions(py::cast(&t, py::return_value_policy::reference), d);
+                     return t;
+                   }));
+  return c;
+}
+
+}  // namespace
+
+void applyOptions(py::handle target, const py::dict& values) {
+  const py::handle type = py::type::handle_of(target);
+  const std::vector<std::string> fields = fieldsOf(type);
+  for (auto [k, v] : values) {
+    const std::string key = py::str(k);
+    if (std::find(fields.begin(), fields.end(), key) == fields.end()) {
+      std::string known;
+      for (const std::string& f : fields) known += (known.empty() ? "" : ", ") + f;
+      throw py::type_error(std::string(py::str(type.attr("__name__"))) + " has no option '" + key + "' (options: " + known + ")");
+    }
+    py::object current = target.attr(key.c_str());
+    if (py::isinstance<py::dict>(v) && py::hasattr(current, "to_dict"))
+      applyOptions(current, py::reinterpret_borrow<py::dict>(v));  // a nested struct, set in place
+    else
+      target.attr(key.c_str()) = v;
+  }
+}
+
+void bindOptions(py::module_& m) {
+  m.def("_apply_options", [](py::handle target, const py::dict& values) { applyOptions(target, values); });
+  auto parallel = optionsClass<ParallelOptions>(m, "ParallelOptions", "Threads of the per-vertex filters.");
+  parallel.def_readwrite("threads", &ParallelOptions::threads, "0: all hardware threads; results do not depend on it")
+      .def_readwrite("chunk", &ParallelOptions::chunk)
+      .def_readwrite("report_seconds", &ParallelOptions::reportSeconds);
+
+  auto channel = optionsClass<SignalChannel>(m, "SignalChannel", "One attribute of the signal and how it is compared.");
+  channel.def(py::init([](const py::dict& d) { return optionsFrom<SignalChannel>(d); }))
+      .def(py::init([](const py::tuple& t) {
+        if (t.size() < 1 || t.size() > 3) throw InputError("a channel tuple is (attribute, range_bandwidth=0, kernel='gaussian')");
+        SignalChannel c;
+        py::object o = py::cast(&c, py::return_value_policy::reference);
+        o.attr("attribute") = t[0];
+        if (t.size() > 1) o.attr("range_bandwidth") = t[1];
+        if (t.size() > 2) o.attr("kernel") = t[2];
+        return c;
+      }))
+      .def_readwrite("attribute", &SignalChannel::attribute)
+      .def_readwrite("range_bandwidth", &SignalChannel::rangeBandwidth, "h_r; 0: MeanShiftOptions.range_bandwidth");
+  const std::vector<std::pair<std::string, RangeKernel>> kernels = {{"gaussian", RangeKernel::Gaussian},
+                                                                    {"normal_similarity", RangeKernel::NormalSimilarity}};
+  enumField(channel, "kernel", &SignalChannel::kernel, kernels);
+  py::implicitly_convertible<py::dict, SignalChannel>();
+  py::implicitly_convertible<py::tuple, SignalChannel>();
+
+  auto ms = optionsClass<MeanShiftOptions>(m, "MeanShiftOptions",
+                                           "Options of the Riemannian (blurring) mean shift; spatial ones in average "
+                                           "edge lengths (AEL), range ones in the signal's units.");
+  ms.def_readwrite("channels", &MeanShiftOptions::channels)
+      .def_readwrite("range_bandwidth", &MeanShiftOptions::rangeBandwidth)
+      .def_readwrite("spatial_bandwidth", &MeanShiftOptions::spatialBandwidth)
+      .def_readwrite("radius", &MeanShiftOptions::radius)
+      .def_readwrite("epsilon", &MeanShiftOptions::epsilon)
+      .def_readwrite("max_iterations", &MeanShiftOptions::maxIterations)
+      .def_readwrite("passes", &MeanShiftOptions::passes)
+      .def_readwrite("exact_charts", &MeanShiftOptions::exactCharts)
+      .def_readwrite("recentre", &MeanShiftOptions::recentre)
+      .def_readwrite("chart_cell", &MeanShiftOptions::chartCell)
+      .def_readwrite("chart_distortion", &MeanShiftOptions::chartDistortion)
+      .def_readwrite("chart_cache_bytes", &MeanShiftOptions::chartCacheBytes)
+      .def_readwrite("area_weighted", &MeanShiftOptions::areaWeighted)
+      .def_readwrite("single_precision_kernel", &MeanShiftOptions::singlePrecisionKernel)
+      .def_readwrite("segments", &MeanShiftOptions::segments)
+      .def_readwrite("parallel", &MeanShiftOptions::parallel)
+      .def_property(
+          "threads", [](const MeanShiftOptions& o) { return o.parallel.threads; },
+          [](MeanShiftOptions& o, int t) { o.parallel.threads = t; }, "parallel.threads");
+  enumField(ms, "range_kernel", &MeanShiftOptions::rangeKernel, kernels);
+  enumField(ms, "range_update", &MeanShiftOptions::rangeUpdate,
+            {{"sampled", RangeUpdate::Sampled}, {"joint", RangeUpdate::Joint}});
+
+  auto wavelet = optionsClass<WaveletOptions>(m, "WaveletOptions", "Lifting wavelet analysis.");
+  wavelet.def_readwrite("levels", &WaveletOptions::levels)
+      .def_readwrite("boundary_angle", &WaveletOptions::boundaryAngle)
+      .def_readwrite("max_normal_change", &WaveletOptions::maxNormalChange)
+      .def_readwrite("keep_level_meshes", &WaveletOptions::keepLevelMeshes);
+  enumField(wavelet, "cost", &WaveletOptions::cost, {{"integral", WaveletCost::Integral}, {"residual", WaveletCost::Residual}});
+  enumField(wavelet, "weights", &WaveletOptions::weights,
+            {{"mean_value", WaveletWeights::MeanValue},
+             {"inverse_distance", WaveletWeights::InverseDistance},
+             {"uniform", WaveletWeights::Uniform}});
+
+  auto taubin = optionsClass<TaubinOptions>(m, "TaubinOptions", "Taubin lambda|mu smoothing.");
+  taubin.def_readwrite("iterations", &TaubinOptions::iterations)
+      .def_readwrite("lambda_", &TaubinOptions::lambda)
+      .def_readwrite("mu", &TaubinOptions::mu);
+  enumField(taubin, "weights", &TaubinOptions::weights,
+            {{"uniform", LaplacianWeights::Uniform}, {"fujiwara", LaplacianWeights::Fujiwara}, {"cotangent", LaplacianWeights::Cotangent}});
+
+  auto update = optionsClass<VertexUpdateOptions>(m, "VertexUpdateOptions", "Vertex positions from target face normals.");
+  update.def_readwrite("iterations", &VertexUpdateOptions::iterations)
+      .def_readwrite("area_weighted", &VertexUpdateOptions::areaWeighted)
+      .def_readwrite("fixed_boundary", &VertexUpdateOptions::fixedBoundary);
+  enumField(update, "flip_guard", &VertexUpdateOptions::flipGuard,
+            {{"input", FlipGuard::Input}, {"input_or_target", FlipGuard::InputOrTarget}});
+
+  auto denoise = optionsClass<DenoiseOptions>(m, "DenoiseOptions", "Mesh denoising by mean shift of the vertex normals.");
+  denoise.def_readwrite("passes", &DenoiseOptions::passes)
+      .def_readwrite("consensus_bandwidth", &DenoiseOptions::consensusBandwidth)
+      .def_readwrite("mean_shift", &DenoiseOptions::meanShift)
+      .def_readwrite("support", &DenoiseOptions::support)
+      .def_readwrite("levels", &DenoiseOptions::levels)
+      .def_readwrite("alpha", &DenoiseOptions::alpha)
+      .def_readwrite("wavelet", &DenoiseOptions::wavelet)
+      .def_readwrite("vertex_update", &DenoiseOptions::vertexUpdate);
+  enumField(denoise, "face_normals", &DenoiseOptions::faceNormals,
+            {{"consensus", FaceNormalRule::Consensus}, {"mean", FaceNormalRule::Mean}});
+
+  auto bilateral = optionsClass<BilateralNormalOptions>(m, "BilateralNormalOptions", "Bilateral normal filtering.");
+  bilateral.def_readwrite("normal_iterations", &BilateralNormalOptions::normalIterations)
+      .def_readwrite("sigma_spatial", &BilateralNormalOptions::sigmaSpatial)
+      .def_readwrite("sigma_range", &BilateralNormalOptions::sigmaRange)
+      .def_readwrite("vertex_update", &BilateralNormalOptions::vertexUpdate);
+  enumField(bilateral, "neighborhood", &BilateralNormalOptions::neighborhood,
+            {{"vertex", FaceNeighborhood::Vertex}, {"edge", FaceNeighborhood::Edge}});
+
+  auto terrain = optionsClass<TerrainOptions>(m, "TerrainOptions", "The procedural fractal terrain.");
+  terrain.def_readwrite("size", &TerrainOptions::size)
+      .def_readwrite("seed", &TerrainOptions::seed)
+      .def_readwrite("cell_size", &TerrainOptions::cellSize)
+      .def_readwrite("relief", &TerrainOptions::relief)
+      .def_readwrite("roughness", &TerrainOptions::roughness)
+      .def_readwrite("forest_cover", &TerrainOptions::forestCover)
+      .def_readwrite("max_vegetation_height", &TerrainOptions::maxVegetationHeight)
+      .def_readwrite("water_level", &TerrainOptions::waterLevel);
+}
+
+}  // namespace geoshift::python
