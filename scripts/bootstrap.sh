@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
 # Installs whatever is missing for building and testing geoshift on Debian 12, then builds.
 # Idempotent: when nothing is missing it only checks, and the builds are incremental.
-#   scripts/bootstrap.sh [--no-build] [--no-wasm] [--no-browser]
+#   scripts/bootstrap.sh [--no-build] [--no-wasm] [--no-browser] [--no-python]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-build=1 wasm=1 browser=1
+build=1 wasm=1 browser=1 python=1
 for a in "$@"; do
   case "$a" in
     --no-build) build=0 ;;
     --no-wasm) wasm=0 ;;
     --no-browser) browser=0 ;;
+    --no-python) python=0 ;;
     *) echo "bootstrap: unknown option $a" >&2; exit 2 ;;
   esac
 done
@@ -22,6 +23,9 @@ pkgs=(cmake g++ make pkg-config libeigen3-dev libtinygltf-dev nlohmann-json3-dev
       libtinyobjloader-dev libcli11-dev libbenchmark-dev libtiff-dev)
 [ "$wasm" = 1 ] && pkgs+=(emscripten)
 [ "$browser" = 1 ] && pkgs+=(chromium)
+# The Python package (python/, `pip install .` into build/venv) and its tests: Debian's Python only.
+[ "$python" = 1 ] && pkgs+=(python3-dev python3-venv python3-pip python3-setuptools pybind11-dev python3-pybind11
+                            python3-numpy python3-dask python3-distributed python3-psutil python3-pytest)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
@@ -66,5 +70,19 @@ if [ "$wasm" = 1 ]; then
   log "wasm build (build/wasm-release)"
   [ -f build/wasm-release/CMakeCache.txt ] || emcmake cmake --preset wasm-release >/dev/null
   cmake --build build/wasm-release -j "$jobs"
+fi
+# --- Python package --------------------------------------------------------------------------
+# Debian's interpreter (a python3 earlier on PATH may not see Debian's packages); the venv sees
+# them (--system-site-packages) and gets the package by pip, offline, built in build/python.
+if [ "$python" = 1 ]; then
+  stamp=build/venv/.geoshift-installed
+  [ -x build/venv/bin/python ] || /usr/bin/python3 -m venv --system-site-packages build/venv
+  if [ ! -f "$stamp" ] || [ -n "$(find python core CMakeLists.txt setup.py pyproject.toml -newer "$stamp" -type f 2>/dev/null | head -1)" ]; then
+    log "Python package (build/python, pip install into build/venv)"
+    GEOSHIFT_BUILD_JOBS="$jobs" build/venv/bin/pip install --no-build-isolation --no-deps --quiet .
+    touch "$stamp"
+  else
+    log "Python package up to date"
+  fi
 fi
 log "ready"

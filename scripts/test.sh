@@ -14,6 +14,13 @@ ctest --test-dir build/native-release --output-on-failure -j "$(nproc 2>/dev/nul
 section "wasm (node --test)"
 node --test tests/wasm/ || failed+=(wasm)
 
+section "python (pytest; Dask LocalCluster of 2 workers)"
+if [ -x build/venv/bin/python ]; then
+  build/venv/bin/python -m pytest -q tests/python || failed+=(python)
+else
+  echo "build/venv missing: run scripts/bootstrap.sh"; failed+=(python)
+fi
+
 section "web type check (tsc)"
 npx --no-install tsc -p web/tsconfig.json --noEmit && echo "tsc: no type errors" || failed+=(typecheck)
 
