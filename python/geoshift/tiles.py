@@ -76,7 +76,7 @@ class Reach:
     passes: int
     wavelet: float        # the hybrid filter's analysis and synthesis footprint
     bound: float          # the worst case: P (r + climb) + wavelet
-    halo: float           # the halo used: where the influence of the missing outside falls below tol
+    halo: float           # the halo used (filter_reach)
 
     def describe(self) -> str:
         return (f"h_s {self.bandwidth:.4g}, r {self.radius:.4g}, climb <= {self.climb:.4g} a pass, {self.passes} "
@@ -85,27 +85,22 @@ class Reach:
 
 def filter_reach(options: MeanShiftOptions, levels: int, unit: float, fine_unit: float) -> Reach:
     """The reach of mean shift with these options whose spatial unit is `unit` (the coarse mesh's AEL
-    with levels > 0), on an input of AEL `fine_unit`.
+    with levels > 0) on an input of AEL `fine_unit` (docs/tiles.md).
 
-    A pass reads samples within r of its iterate, which climbs at most k_max steps of at most r, so
-    P passes depend on data up to P (r + k_max r) away: the bound, far too wide to pay (terrain-bms:
-    ~900 coarse AEL). The weights tell a narrower story: a sample at distance d weighs
-    exp(-d^2 / 2 h_s^2), P blurring passes compose into a Gaussian of sigma h_s sqrt(P), and the
-    share of the weight beyond d is below 1e-3 of the total at d = 3.3 sigma (3.1 for one pass). The
-    halo is r (the first pass reads that far in full) plus 3.3 h_s sqrt(P - 1) for the passes after
-    it plus the climbs' typical travel (one h_s a pass at most half of them... bounded by k_max eps),
-    plus the wavelet footprint: analysis and synthesis read one ring of each level's mesh, whose
-    edges grow to `unit`, so L coarse edges, doubled for the odd/even choices near the cut.
-    """
+    Worst case: a pass reads samples within r of its iterate, which climbs at most k_max steps of at
+    most r, so P passes depend on data up to P (r + k_max r) away (terrain-bms: 900 coarse AEL).
+    The halo used: r, which the first pass reads in full, plus max(r, h_s sqrt(P)), the width of the
+    Gaussian that P blurring passes compose into (beyond it the missing outside weighs little and
+    the range kernel cuts it further), plus the wavelet footprint (one ring of each level's mesh,
+    twice for the odd/even choices near the cut). Measured: with it, differences near tile borders
+    are below the filter's own noise (docs/tiles.md)."""
     hs = options.spatial_bandwidth * unit
     r = (options.radius if options.radius > 0 else 3 * options.spatial_bandwidth) * unit
     passes = max(1, options.passes)
     climb = options.max_iterations * r
     wavelet = 2.0 * levels * unit + 2.0 * fine_unit
     bound = passes * (r + climb) + wavelet
-    spread = 3.3 * hs * math.sqrt(passes - 1) if passes > 1 else 0.0
-    travel = min(climb, options.max_iterations * options.epsilon * unit + hs)
-    halo = min(bound, r + spread + travel + wavelet)
+    halo = min(bound, r + max(r, hs * math.sqrt(passes)) + wavelet)
     return Reach(hs, r, climb, passes, wavelet, bound, halo)
 
 
@@ -224,10 +219,14 @@ def _client(scheduler=None, workers: int = 2, threads: int = 1):
 
 
 def filter_mesh_tiled(mesh: geoshift.Mesh, request: FilterRequest, tile: float, client, *,
-                      halo: Optional[float] = None, threads: int = 1, log=None) -> TiledResult:
+                      halo: Optional[float] = None, threads: int = 1, unit: str = "whole", log=None) -> TiledResult:
     """Filters the mesh tile by tile on the Dask client. `tile` is the tile side in average edge
     lengths of the mesh (about tile x tile vertices on a terrain); `halo` (absolute) overrides the
-    derived one. Raises the first tile's error (naming the tile); nothing is returned then."""
+    derived one. The spatial unit of every tile is the whole mesh's coarse AEL, as the untiled
+    filter's: unit="whole" analyses the whole mesh here for it (exact), "tiles" sums the tiles' own
+    coarse edges (no whole analysis; off by ~0.1%, which moves the result by the filter's own noise
+    under such a bandwidth change). Raises the first tile's error (naming the tile); nothing is
+    returned then."""
     start = time.perf_counter()
     options, levels, alpha, signal = request.resolved()
     built = mesh._built()
@@ -240,12 +239,16 @@ def filter_mesh_tiled(mesh: geoshift.Mesh, request: FilterRequest, tile: float, 
     if log:
         log(f"{len(tiles)} tiles of {side:.4g} (tile {tile} x AEL {fine:.4g}), halo {reach.halo:.4g}; "
             f"{sum(len(t.vertices) for t in tiles)} vertices with halos for {mesh.vertex_count}")
-    # 1. The unit of the spatial options: the whole surface's coarse AEL, from the tiles' owned edges.
-    stats = client.gather([client.submit(_edge_stats, pieces[t.index], t.owned, levels, t.name, pure=False)
-                           for t in tiles])
+    # 1. The unit of the spatial options: the whole surface's coarse AEL.
+    if unit == "whole":
+        stats = [_edge_stats(mesh, np.ones(mesh.vertex_count, dtype=bool), levels, mesh.label)]
+    else:
+        stats = client.gather([client.submit(_edge_stats, pieces[t.index], t.owned, levels, t.name, pure=False)
+                               for t in tiles])
     unit = sum(s for s, _ in stats) / max(1e-300, sum(c for _, c in stats))
+    estimated = reach
     reach = filter_reach(options, levels, unit, fine)
-    if halo is None and reach.halo > (est_unit and filter_reach(options, levels, est_unit, fine).halo) * 1.05:
+    if halo is None and reach.halo > estimated.halo:
         # the measured coarse AEL reaches farther than the estimate: cut again with the real halo
         tiles = cut(mesh, side, reach.halo)
         pieces = [submesh(mesh, t) for t in tiles]
@@ -277,11 +280,12 @@ def filter_mesh_tiled(mesh: geoshift.Mesh, request: FilterRequest, tile: float, 
 
 # --- rasters: dask.array.map_overlap -----------------------------------------------------------
 
-def _raster_block(block: np.ndarray, transform, request: FilterRequest, unit: float, signal: str,
-                  block_info=None):
+def _raster_block(block: np.ndarray, transform, request: FilterRequest, unit: float, signal: str, tile: int,
+                  halo_cells: int, block_info=None):
     """One raster task: the grid terrain of the block (with its halo), filtered; NaN stays NaN."""
-    loc = block_info[0]["array-location"] if block_info else [(0, 0), (0, 0)]
-    r0, c0 = loc[0][0], loc[1][0]
+    # map_overlap's blocks start `depth` before their chunk (not before the raster's first cell)
+    chunk = block_info[0]["chunk-location"] if block_info is not None else (0, 0)
+    r0, c0 = max(0, chunk[0] * tile - halo_cells), max(0, chunk[1] * tile - halo_cells)
     t = list(transform)
     # the block's own geotransform: its first cell is (c0, r0) of the raster
     t[0] = transform[0] + c0 * transform[1] + r0 * transform[2]
@@ -332,7 +336,8 @@ def filter_raster_tiled(values: np.ndarray, transform, request: FilterRequest, t
     if sig == "terrain":
         sig = "_ELEVATION"
     filtered = arr.map_overlap(_raster_block, depth=depth, boundary="none", dtype=np.float64, trim=True,
-                               transform=tuple(transform), request=req, unit=unit, signal=sig)
+                               transform=tuple(transform), request=req, unit=unit, signal=sig, tile=tile,
+                               halo_cells=depth)
     return client.compute(filtered).result(), reach, unit
 
 

@@ -65,3 +65,18 @@ def noisy_copy(mesh: geoshift.Mesh, amount: float, seed: int = 1) -> geoshift.Me
     out = mesh.copy()
     out.positions = mesh.positions + rng.normal(scale=amount * ael, size=mesh.positions.shape)
     return out
+
+
+REPORT = []
+
+
+def report(line: str) -> None:
+    """A figure the tests measured, printed at the end of the run (pytest's summary)."""
+    REPORT.append(line)
+
+
+def pytest_terminal_summary(terminalreporter):
+    if REPORT:
+        terminalreporter.write_sep("-", "figures measured by the tests")
+        for line in REPORT:
+            terminalreporter.write_line(line)
