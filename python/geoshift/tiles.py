@@ -16,6 +16,7 @@ import os
 import sys
 import tempfile
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence
@@ -243,8 +244,10 @@ def filter_mesh_tiled(mesh: geoshift.Mesh, request: FilterRequest, tile: float, 
     if unit == "whole":
         stats = [_edge_stats(mesh, np.ones(mesh.vertex_count, dtype=bool), levels, mesh.label)]
     else:
-        stats = client.gather([client.submit(_edge_stats, pieces[t.index], t.owned, levels, t.name, pure=False)
-                               for t in tiles])
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", message="Large object of size")
+            stats = client.gather([client.submit(_edge_stats, pieces[t.index], t.owned, levels, t.name, pure=False)
+                                   for t in tiles])
     unit = sum(s for s, _ in stats) / max(1e-300, sum(c for _, c in stats))
     estimated = reach
     reach = filter_reach(options, levels, unit, fine)
@@ -254,9 +257,16 @@ def filter_mesh_tiled(mesh: geoshift.Mesh, request: FilterRequest, tile: float, 
         pieces = [submesh(mesh, t) for t in tiles]
     if log:
         log(f"coarse AEL {unit:.4g} ({levels} levels); {reach.describe()}")
-    # 2. The filter, one task a tile.
-    futures = [client.submit(_filter_tile, pieces[t.index], t.owned, request, unit, t.name, threads, pure=False)
-               for t in tiles]
+    # 2. The filter, one task a tile. The tiles travel in the task graph, not scattered: a task whose
+    # worker dies is re-run elsewhere from it (scattered data would die with the worker).
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Large object of size")
+        futures = [client.submit(_filter_tile, pieces[t.index], t.owned, request, unit, t.name, threads, pure=False)
+                   for t in tiles]
+    if log:
+        import distributed
+        for k, _ in enumerate(distributed.as_completed(futures), 1):
+            log(f"{k}/{len(futures)} tiles done")
     results = client.gather(futures)
     # 3. Stitch: every vertex from the tile that owns it.
     out = mesh.copy()
