@@ -7,13 +7,13 @@ message. geoshift.tiles filters terrains and meshes too large for one machine on
 """
 from ._geoshift import (BilateralNormalOptions, Cancelled, DenoiseOptions, InputError, MeanShiftOptions,
                         ParallelOptions, SignalChannel, TaubinOptions, TerrainOptions, VertexUpdateOptions,
-                        WaveletOptions, color_map, delaunay_2d, height_above_ground, read_geotiff, read_las,
-                        read_ply_points, spread_bandwidth)
+                        WaveletOptions, color_map, delaunay_2d, height_above_ground, spread_bandwidth)
 from ._filters import (DenoiseResult, FilterResult, Multiresolution, analyze, bilateral_normal_denoise, curvature,
                        curvatures, denoise, mean_shift, presets, synthesize, taubin_smooth, wavelet_filter)
 from ._geodesic import Geodesics, exp_map, log_map
 from ._mesh import Document, Mesh, read, write
-from ._terrain import grid_terrain, point_terrain, procedural_terrain, read_terrain
+from ._terrain import (grid_terrain, point_terrain, procedural_terrain, read_geotiff, read_las, read_ply_points,
+                       read_terrain)
 
 __version__ = "0.1.0"
 

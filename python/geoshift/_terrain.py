@@ -51,3 +51,20 @@ def procedural_terrain(size: int = 257, *, progress: Progress = None, **kwargs) 
     with _VEGETATION_HEIGHT and _CLASS; the same options give the same terrain everywhere."""
     o = _options(TerrainOptions, None, dict(kwargs, size=size))
     return _terrain(_core._procedural_terrain(o, progress))
+
+
+def read_las(path) -> dict:
+    """LAS 1.0-1.4 points: dict of positions (N, 3), classes (N,) or None, colors (N, 3) in [0, 1]
+    or None, notes. LAZ is refused with a message (no LASzip in Debian 12)."""
+    return _core.read_las(str(path))
+
+
+def read_ply_points(path) -> dict:
+    """A PLY point set (vertex x y z, optional colors and class), as read_las."""
+    return _core.read_ply_points(str(path))
+
+
+def read_geotiff(path) -> dict:
+    """A DEM GeoTIFF: dict of values (rows, cols; NaN = nodata), transform (GDAL geotransform),
+    geographic, notes."""
+    return _core.read_geotiff(str(path))

@@ -121,3 +121,14 @@ def test_las_terrain_matches_cli(cli, tmp_path):
     assert mesh.report["points_read"] == 1065 and mesh.colors is not None
     geoshift.write(mesh, tmp_path / "py.glb")
     same_part(geoshift.read(tmp_path / "cli.glb").mesh, geoshift.read(tmp_path / "py.glb").mesh)
+
+
+def test_geotiff_terrain_matches_cli(cli, tmp_path):
+    tif = shared("dem_debian_r_packages/stars/olinda_dem_utm25s.tif")
+    cli("terrain", tif, "-o", tmp_path / "cli.glb")
+    mesh = geoshift.read_terrain(tif)
+    grid = geoshift.read_geotiff(tif)
+    assert grid["values"].shape == (111, 111)
+    np.testing.assert_array_equal(geoshift.grid_terrain(grid).positions, mesh.positions)
+    geoshift.write(mesh, tmp_path / "py.glb")
+    same_part(geoshift.read(tmp_path / "cli.glb").mesh, geoshift.read(tmp_path / "py.glb").mesh)
