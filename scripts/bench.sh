@@ -23,3 +23,13 @@ done
 echo
 echo "== wasm vs native: denoise (bench/wasm/denoise.mjs) =="
 node bench/wasm/denoise.mjs || echo "bench/wasm/denoise.mjs failed"
+
+# Tiled filtering on Dask (issue 20): terrain-bms on the autzen LiDAR and a 4M-vertex procedural
+# terrain with 1 and 2 workers (about 15 minutes on 2 cores).
+echo
+echo "== tiles on Dask (bench/python/tiles_bench.py) =="
+if [ -x build/venv/bin/python ]; then
+  build/venv/bin/python bench/python/tiles_bench.py || echo "bench/python/tiles_bench.py failed"
+else
+  echo "build/venv missing: run scripts/bootstrap.sh"
+fi
