@@ -331,7 +331,7 @@ def filter_raster_tiled(values: np.ndarray, transform, request: FilterRequest, t
             for c0 in range(0, cols, tile):
                 block = values[r0:r0 + tile, c0:c0 + tile]
                 if np.count_nonzero(~np.isnan(block)) >= 3:
-                    futures.append(client.submit(_raster_stats, block, levels, pure=False))
+                    futures.append(client.submit(_raster_stats, block, levels, tuple(transform), pure=False))
         stats = client.gather(futures)
         unit = sum(s for s, _ in stats) / max(1e-300, sum(c for _, c in stats))
     reach = filter_reach(options, levels, unit, fine)
@@ -351,8 +351,9 @@ def filter_raster_tiled(values: np.ndarray, transform, request: FilterRequest, t
     return client.compute(filtered).result(), reach, unit
 
 
-def _raster_stats(block: np.ndarray, levels: int):
-    mesh = geoshift.grid_terrain(block, (0, 1, 0, 0, 0, -1), geographic_to_meters=False)
+def _raster_stats(block: np.ndarray, levels: int, transform=(0, 1, 0, 0, 0, -1)):
+    # edge lengths depend on the cell size, not on where the block is
+    mesh = geoshift.grid_terrain(block, tuple(transform), geographic_to_meters=False)
     return _core._coarse_edge_stats(mesh._built(), levels, geoshift.WaveletOptions(),
                                     np.ones(mesh.vertex_count), None)
 
@@ -490,6 +491,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             return 0
         kind, data = load(a.input, a.procedural, a.seed)
         if kind == "raster":
+            if data["geographic"]:
+                raise InputError(f"{a.input}: a geographic (longitude/latitude) raster; tiles need projected "
+                                 "coordinates (metres) that mean the same in every tile: reproject it first")
             values = np.asarray(data["values"], dtype=np.float64)
             out, reach, unit = filter_raster_tiled(values, data["transform"], request, int(a.tile), client,
                                                    log=log)
