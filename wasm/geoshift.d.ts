@@ -101,9 +101,12 @@ export interface OpParams {
     levels?: number; alpha?: number; filterGeometry?: boolean;
   };
   /**
-   * Denoising of the positions, as `geoshift denoise`. meanshift (default, the paper's 4.1): hs,
-   * radius, eps in AEL, hr of the normal kernel (eq. 8), passes of normal filtering + vertex update;
-   * rangeUpdate defaults to 'sampled' here (the paper's), faceNormals to 'consensus'.
+   * Denoising of the positions, as `geoshift denoise`. meanshift (default), preset 'default': noise
+   * level in AEL (0 = estimated from the mesh), strength (times the noise level), hr between unit
+   * normals (smaller keeps more edges), hs and radius in AEL, passes (0 = chosen by SURE);
+   * stats say what was estimated and chosen (docs/denoising.md). preset 'paper' (the paper's 4.1):
+   * hs, radius, eps in AEL, hr of the normal kernel (eq. 8), kmax, passes, rangeUpdate ('sampled'),
+   * faceNormals ('consensus'), supportIterations. A parameter of the other preset is an error.
    * bilateral: normalIterations, sigmaC (AEL, 0 = automatic), sigmaS, neighbors. taubin:
    * iterations, lambda, mu. A parameter of another method than the chosen one is an error.
    * levels > 0 (meanshift only): denoise a mesh coarsened that many wavelet levels and add the
@@ -111,6 +114,7 @@ export interface OpParams {
    */
   denoise: {
     method?: 'meanshift' | 'bilateral' | 'taubin';
+    preset?: 'default' | 'paper'; noise?: number; strength?: number;
     hs?: number; hr?: number; radius?: number; kmax?: number; eps?: number; passes?: number;
     rangeUpdate?: 'joint' | 'sampled'; faceNormals?: 'consensus' | 'mean'; threads?: number;
     supportIterations?: number; vertexIterations?: number;

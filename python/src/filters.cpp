@@ -302,6 +302,12 @@ void bindFilters(py::module_& m) {
     std::vector<Vec3> positions(b.callerVertices());
     for (size_t i = 0; i < positions.size(); ++i) positions[i] = mesh.position(b.build.vertexOf[i]);
     out["positions"] = fromPoints(positions);
+    out["noise_level"] = r.noiseLevel;
+    out["noise_estimated"] = r.noiseEstimated;
+    out["presmoothing_steps"] = r.presmoothingSteps;
+    out["passes"] = r.passes;
+    out["passes_run"] = r.passesRun;
+    out["estimated_error"] = r.estimatedError;
     out["mean_iterations"] = r.meanIterations;
     out["converged_fraction"] = r.convergedFraction;
     out["limited_steps"] = r.limitedSteps;

@@ -169,17 +169,40 @@ void bindOptions(py::module_& m) {
   enumField(update, "flip_guard", &VertexUpdateOptions::flipGuard,
             {{"input", FlipGuard::Input}, {"input_or_target", FlipGuard::InputOrTarget}});
 
-  auto denoise = optionsClass<DenoiseOptions>(m, "DenoiseOptions", "Mesh denoising by mean shift of the vertex normals.");
-  denoise.def_readwrite("passes", &DenoiseOptions::passes)
-      .def_readwrite("consensus_bandwidth", &DenoiseOptions::consensusBandwidth)
-      .def_readwrite("mean_shift", &DenoiseOptions::meanShift)
-      .def_readwrite("support", &DenoiseOptions::support)
+  auto hood = optionsClass<FaceNeighborhoodOptions>(m, "FaceNeighborhoodOptions",
+                                                    "Geodesic face neighbourhoods of the default denoiser (AEL units).");
+  hood.def_readwrite("radius", &FaceNeighborhoodOptions::radius)
+      .def_readwrite("spatial_bandwidth", &FaceNeighborhoodOptions::spatialBandwidth)
+      .def_readwrite("parallel", &FaceNeighborhoodOptions::parallel);
+
+  auto paper = optionsClass<PaperDenoiseOptions>(m, "PaperDenoiseOptions", "The paper's 4.1 denoising pipeline.");
+  paper.def_readwrite("passes", &PaperDenoiseOptions::passes)
+      .def_readwrite("consensus_bandwidth", &PaperDenoiseOptions::consensusBandwidth)
+      .def_readwrite("mean_shift", &PaperDenoiseOptions::meanShift)
+      .def_readwrite("support", &PaperDenoiseOptions::support)
+      .def_readwrite("vertex_update", &PaperDenoiseOptions::vertexUpdate);
+  enumField(paper, "face_normals", &PaperDenoiseOptions::faceNormals,
+            {{"consensus", FaceNormalRule::Consensus}, {"mean", FaceNormalRule::Mean}});
+
+  auto denoise = optionsClass<DenoiseOptions>(
+      m, "DenoiseOptions", "Mesh denoising: face-normal mean shift with SURE (default) or the paper's pipeline.");
+  denoise.def_readwrite("noise_level", &DenoiseOptions::noiseLevel)
+      .def_readwrite("strength", &DenoiseOptions::strength)
+      .def_readwrite("range_bandwidth", &DenoiseOptions::rangeBandwidth)
+      .def_readwrite("neighborhood", &DenoiseOptions::neighborhood)
+      .def_readwrite("support_smoothing", &DenoiseOptions::supportSmoothing)
+      .def_readwrite("presmoothing", &DenoiseOptions::presmoothing)
+      .def_readwrite("max_passes", &DenoiseOptions::maxPasses)
+      .def_readwrite("patience", &DenoiseOptions::patience)
+      .def_readwrite("fixed_passes", &DenoiseOptions::fixedPasses)
+      .def_readwrite("vertex_iterations", &DenoiseOptions::vertexIterations)
+      .def_readwrite("seed", &DenoiseOptions::seed)
+      .def_readwrite("threads", &DenoiseOptions::threads)
+      .def_readwrite("paper", &DenoiseOptions::paper)
       .def_readwrite("levels", &DenoiseOptions::levels)
       .def_readwrite("alpha", &DenoiseOptions::alpha)
-      .def_readwrite("wavelet", &DenoiseOptions::wavelet)
-      .def_readwrite("vertex_update", &DenoiseOptions::vertexUpdate);
-  enumField(denoise, "face_normals", &DenoiseOptions::faceNormals,
-            {{"consensus", FaceNormalRule::Consensus}, {"mean", FaceNormalRule::Mean}});
+      .def_readwrite("wavelet", &DenoiseOptions::wavelet);
+  enumField(denoise, "preset", &DenoiseOptions::preset, {{"default", DenoisePreset::Default}, {"paper", DenoisePreset::Paper}});
 
   auto bilateral = optionsClass<BilateralNormalOptions>(m, "BilateralNormalOptions", "Bilateral normal filtering.");
   bilateral.def_readwrite("normal_iterations", &BilateralNormalOptions::normalIterations)

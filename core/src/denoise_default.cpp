@@ -1,0 +1,189 @@
+// The default denoiser (denoise.hpp; docs/denoising.md#pipeline).
+//
+// Candidates x(k, t): k Taubin steps, then t passes of [blurring mean shift of the face normals →
+// vertex update]. For each, Stein's unbiased risk estimate of the error along the vertex normals is
+//   SURE = Σ_i ((x_i − y_i)·N_i)² − mσ² + 2σ² div,  div ≈ Σ_i b_i ((x'_i − x_i)·N_i) / ε,
+// with y the input, N its vertex normals, σ the noise level, and x' the same candidate computed from
+// y + ε b N for a random ±1 probe b (Monte-Carlo SURE, Ramani et al. 2008). The candidate of least
+// SURE is returned. Every candidate runs on both copies, so the cost is twice the passes computed.
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "denoise_detail.hpp"
+#include "geoshift/error.hpp"
+#include "geoshift/geodesic.hpp"
+#include "geoshift/geometry.hpp"
+#include "geoshift/noise.hpp"
+
+namespace geoshift::denoise_detail {
+
+namespace {
+
+void validate(const DenoiseOptions& o) {
+  auto bad = [](const std::string& what) { throw InputError("denoise: " + what); };
+  if (!(o.noiseLevel >= 0) || !std::isfinite(o.noiseLevel))
+    bad("noise level must be >= 0 (0: estimate it; got " + std::to_string(o.noiseLevel) + ")");
+  if (!(o.strength > 0) || !std::isfinite(o.strength)) bad("strength must be > 0 (got " + std::to_string(o.strength) + ")");
+  if (!(o.rangeBandwidth > 0) || !std::isfinite(o.rangeBandwidth))
+    bad("range bandwidth h_r must be > 0 (got " + std::to_string(o.rangeBandwidth) + ")");
+  if (o.presmoothing.empty()) bad("presmoothing needs at least one candidate step count");
+  for (int k : o.presmoothing)
+    if (k < 0 || k > 10000) bad("presmoothing steps must be in [0, 10000] (got " + std::to_string(k) + ")");
+  if (o.maxPasses < 1 || o.maxPasses > 10000) bad("maximum passes must be in [1, 10000] (got " + std::to_string(o.maxPasses) + ")");
+  if (o.patience < 1) bad("patience must be at least 1 (got " + std::to_string(o.patience) + ")");
+  if (o.fixedPasses < 0 || o.fixedPasses > 10000) bad("fixed passes must be in [0, 10000] (got " + std::to_string(o.fixedPasses) + ")");
+  if (o.vertexIterations < 1 || o.vertexIterations > 10000)
+    bad("vertex iterations must be in [1, 10000] (got " + std::to_string(o.vertexIterations) + ")");
+}
+
+// One copy of the mesh being denoised: its positions and the face normals its guard refers to.
+struct Track {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> reference;
+};
+
+}  // namespace
+
+DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  validate(o);
+  DenoiseResult result;
+  result.filteredVertices = mesh.vertexCount();
+  result.threads = resolveThreads(o.threads);
+  const double ael = averageEdgeLength(mesh);
+  double level = o.noiseLevel;
+  if (level == 0) {
+    level = estimateNoise(mesh).level;
+    result.noiseEstimated = true;
+  }
+  level *= o.strength;
+  result.noiseLevel = level;
+  auto finish = [&] {
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  };
+  if (!(level > 0)) return finish();  // nothing to remove
+  const double sigma = level * ael;
+  const int n = mesh.vertexCount();
+  const std::vector<Vec3> input = mesh.positions();
+  ParallelOptions parallel;
+  parallel.threads = o.threads;
+
+  // Neighbourhoods on a smoothed support, found once.
+  progress.step(0, "support");
+  FaceNeighborhoodOptions hoodOptions = o.neighborhood;
+  hoodOptions.parallel.threads = o.threads;
+  FaceNeighborhoods hoods;
+  {
+    Mesh support = mesh;
+    taubinSmooth(support, o.supportSmoothing);
+    const SurfaceGeometry geometry(support);
+    hoods = faceNeighborhoods(geometry, hoodOptions, progress.slice(0, 0.1));
+  }
+  result.neighborhoodBytes = hoods.bytes();
+
+  // The probe.
+  const std::vector<Vec3> normals = vertexNormals(mesh);
+  const bool fixed = o.fixedPasses > 0;
+  const double eps = 0.01 * sigma;
+  std::vector<double> probe(n, 0);
+  int m = 0;
+  {
+    std::mt19937_64 rng(o.seed);
+    for (int v = 0; v < n; ++v) {
+      const double sign = (rng() >> 63) ? 1.0 : -1.0;
+      if (normals[v].squaredNorm() > 0) {
+        probe[v] = sign;
+        ++m;
+      }
+    }
+  }
+  Mesh work = mesh;
+  auto risk = [&](const Track& x, const Track& xp) {
+    double fit = 0, div = 0;
+    for (int v = 0; v < n; ++v) {
+      if (probe[v] == 0) continue;
+      const double d = (x.positions[v] - input[v]).dot(normals[v]);
+      fit += d * d;
+      div += probe[v] * (xp.positions[v] - x.positions[v]).dot(normals[v]);
+    }
+    return (fit - m * sigma * sigma + 2 * sigma * sigma * div / eps) / std::max(1, m);
+  };
+  auto start_track = [&](const std::vector<Vec3>& from) {
+    Track t;
+    t.positions = from;
+    work.positions() = from;
+    t.reference = faceNormals(work);
+    return t;
+  };
+  auto presmooth = [&](Track& t, int steps) {
+    if (steps == 0) return;
+    TaubinOptions taubin = o.supportSmoothing;
+    taubin.iterations = steps;
+    work.positions() = t.positions;
+    taubinSmooth(work, taubin);
+    t.positions = work.positions();
+  };
+  VertexUpdateOptions update;
+  update.iterations = o.vertexIterations;
+  update.flipGuard = FlipGuard::InputOrTarget;
+  auto pass = [&](Track& t) {
+    work.positions() = t.positions;
+    const std::vector<Vec3> targets =
+        shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), o.rangeBandwidth, parallel);
+    update.referenceNormals = t.reference;
+    VertexUpdateResult u = updateVertices(work, targets, update);
+    result.limitedSteps += u.limitedSteps;
+    t.positions = std::move(u.positions);
+    ++result.passesRun;
+  };
+
+  std::vector<Vec3> perturbed = input;
+  for (int v = 0; v < n; ++v) perturbed[v] += eps * probe[v] * normals[v];
+  const Track y = start_track(input), yp = start_track(perturbed);
+  std::vector<Vec3> best;
+  double bestRisk = 0;
+  const std::vector<int> candidates = fixed ? std::vector<int>{o.presmoothing.front()} : o.presmoothing;
+  const int passBudget = fixed ? o.fixedPasses : o.maxPasses;
+  const double total = static_cast<double>(candidates.size()) * (passBudget + 1);
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    const int steps = candidates[c];
+    Track x = y, xp = yp;
+    presmooth(x, steps);
+    if (!fixed) presmooth(xp, steps);
+    int lastBest = 0;
+    double candidateBest = 0;
+    for (int t = 0; t <= passBudget; ++t) {
+      progress.step(0.1 + 0.9 * (static_cast<double>(c) * (passBudget + 1) + t) / total, "denoise passes");
+      if (t > 0) {
+        pass(x);
+        if (!fixed) pass(xp);
+      }
+      if (fixed) continue;
+      const double r = risk(x, xp);
+      if (t == 0 || r < candidateBest) {
+        candidateBest = r;
+        lastBest = t;
+      }
+      if (best.empty() || r < bestRisk) {
+        bestRisk = r;
+        best = x.positions;
+        result.presmoothingSteps = steps;
+        result.passes = t;
+      }
+      if (t - lastBest >= o.patience) break;
+    }
+    if (fixed) {
+      best = std::move(x.positions);
+      result.presmoothingSteps = steps;
+      result.passes = passBudget;
+    }
+  }
+  result.estimatedError = fixed ? 0 : std::sqrt(std::max(0.0, bestRisk)) / ael;
+  mesh.positions() = std::move(best);
+  return finish();
+}
+
+}  // namespace geoshift::denoise_detail
