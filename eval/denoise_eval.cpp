@@ -85,10 +85,15 @@ Outcome bilateralTuned(const Mesh& noisy, const Mesh& clean) {
   return best;
 }
 
+double evalStrength = 1;  // --strength, --max-passes: what-ifs of the default denoiser's options
+int evalMaxPasses = 0;
+
 Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   Mesh m = noisy;
   DenoiseOptions o;
   o.preset = preset;
+  o.strength = evalStrength;
+  if (evalMaxPasses > 0) o.maxPasses = evalMaxPasses;
   const DenoiseResult r = denoise(m, o);
   std::ostringstream note;
   note.precision(3);
@@ -319,6 +324,7 @@ int usage(const char* error) {
                "  --mesh      only meshes whose name contains SUBSTRING (case-insensitive)\n"
                "  --quick     a small subset, as a smoke test\n"
                "  --pairs     only the ground-truth pairs\n"
+               "  --strength, --max-passes  the default denoiser's options of those names\n"
                "  --method    only methods whose name contains SUBSTRING\n"
                "  --noise-estimate  only the estimated against the true noise level of each case\n"
                "  --markdown  also write the tables to FILE\n"
@@ -345,6 +351,8 @@ int main(int argc, char** argv) {
       else if (a == "--noise-estimate") noiseOnly = true;
       else if (a == "--method") methodFilter = lower(value());
       else if (a == "--pairs") pairsOnly = true;
+      else if (a == "--strength") evalStrength = std::stod(value());
+      else if (a == "--max-passes") evalMaxPasses = std::stoi(value());
       else if (a == "--markdown") markdownPath = value();
       else if (a == "--data") data = value();
       else if (a == "-h" || a == "--help") return usage(nullptr);
