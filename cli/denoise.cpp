@@ -76,7 +76,7 @@ const std::vector<Method>& methods() {
            return;
          }
          if (a.hs) o.neighborhood.spatialBandwidth = *a.hs;
-         if (a.hr) o.rangeBandwidth = *a.hr;
+         if (a.hr) o.rangeBandwidths = {*a.hr};
          if (a.radius) o.neighborhood.radius = *a.radius;
          if (a.passes) o.fixedPasses = *a.passes;
          if (a.vertexIterations >= 0) o.vertexIterations = a.vertexIterations;

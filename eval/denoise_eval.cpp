@@ -87,6 +87,7 @@ Outcome bilateralTuned(const Mesh& noisy, const Mesh& clean) {
 
 double evalStrength = 1;  // --strength, --max-passes: what-ifs of the default denoiser's options
 int evalMaxPasses = 0;
+std::vector<double> evalRange;
 
 Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   Mesh m = noisy;
@@ -94,6 +95,7 @@ Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   o.preset = preset;
   o.strength = evalStrength;
   if (evalMaxPasses > 0) o.maxPasses = evalMaxPasses;
+  if (!evalRange.empty()) o.rangeBandwidths = evalRange;
   const DenoiseResult r = denoise(m, o);
   std::ostringstream note;
   note.precision(3);
@@ -101,6 +103,7 @@ Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
     note << o.paper.passes << " passes, " << r.meanIterations << " iterations/vertex/pass";
   else
     note << "noise " << r.noiseLevel << " AEL (estimated); Taubin " << r.presmoothingSteps << " + " << r.passes
+         << " at h_r " << r.rangeBandwidth
          << " passes by SURE (est. error " << r.estimatedError << " AEL)";
   note << ", " << r.threads << " threads";
   return Outcome{m.positions(), note.str()};
@@ -324,7 +327,7 @@ int usage(const char* error) {
                "  --mesh      only meshes whose name contains SUBSTRING (case-insensitive)\n"
                "  --quick     a small subset, as a smoke test\n"
                "  --pairs     only the ground-truth pairs\n"
-               "  --strength, --max-passes  the default denoiser's options of those names\n"
+               "  --strength, --max-passes, --hr (list)  the default denoiser's options of those names\n"
                "  --method    only methods whose name contains SUBSTRING\n"
                "  --noise-estimate  only the estimated against the true noise level of each case\n"
                "  --markdown  also write the tables to FILE\n"
@@ -353,6 +356,10 @@ int main(int argc, char** argv) {
       else if (a == "--pairs") pairsOnly = true;
       else if (a == "--strength") evalStrength = std::stod(value());
       else if (a == "--max-passes") evalMaxPasses = std::stoi(value());
+      else if (a == "--hr") {
+        std::stringstream list(value());
+        for (std::string item; std::getline(list, item, ',');) evalRange.push_back(std::stod(item));
+      }
       else if (a == "--markdown") markdownPath = value();
       else if (a == "--data") data = value();
       else if (a == "-h" || a == "--help") return usage(nullptr);

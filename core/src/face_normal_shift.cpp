@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "geoshift/error.hpp"
@@ -31,14 +32,26 @@ FaceNeighborhoods faceNeighborhoods(const SurfaceGeometry& support, const FaceNe
   constexpr int kBlock = 4096;
   const int threads = resolveThreads(options.parallel.threads);
   struct Scratch {
-    LogMap logMap;
+    std::optional<LogMap> logMap;
     std::vector<int> slot;       // vertex -> entry index in the current log map, or -1
     std::vector<int> faceStamp;  // face -> the face whose neighbourhood last looked at it
+    std::vector<int> queue;
   };
-  LogMap base(support);
+  std::optional<LogMap> base;
+  if (options.geodesic) base.emplace(support);
+  std::vector<Vec3> centroids;
+  if (!options.geodesic) {
+    centroids.resize(nf);
+    for (int f = 0; f < nf; ++f) {
+      const Face& t = mesh.face(f);
+      centroids[f] = (mesh.position(t[0]) + mesh.position(t[1]) + mesh.position(t[2])) / 3;
+    }
+  }
   std::vector<Scratch> scratch;
   scratch.reserve(threads);
-  for (int t = 0; t < threads; ++t) scratch.push_back({base.fork(), std::vector<int>(nv, -1), std::vector<int>(nf, -1)});
+  for (int t = 0; t < threads; ++t)
+    scratch.push_back({options.geodesic ? std::optional<LogMap>(base->fork()) : std::nullopt,
+                       std::vector<int>(options.geodesic ? nv : 0, -1), std::vector<int>(nf, -1), {}});
   std::vector<std::vector<int>> rowFace(kBlock);
   std::vector<std::vector<float>> rowWeight(kBlock);
   out.start.reserve(nf + 1);
@@ -56,26 +69,48 @@ FaceNeighborhoods faceNeighborhoods(const SurfaceGeometry& support, const FaceNe
       weights.clear();
       faces.push_back(f);
       weights.push_back(1.0f);
-      const auto& entries = s.logMap.compute(SurfacePoint::inFace(mesh, f, Vec3::Constant(1.0 / 3.0)), reach);
-      for (size_t e = 0; e < entries.size(); ++e) s.slot[entries[e].vertex] = static_cast<int>(e);
-      s.faceStamp[f] = f;
-      for (const LogMapEntry& entry : entries) {
-        mesh.forEachOutgoing(entry.vertex, [&](int h) {
-          const int g = Mesh::faceOf(h);
-          if (s.faceStamp[g] == f) return;
-          s.faceStamp[g] = f;
-          Vec2 c = Vec2::Zero();
-          for (int w : mesh.face(g)) {
-            if (s.slot[w] < 0) return;
-            c += entries[s.slot[w]].coords();
+      if (options.geodesic) {
+        const auto& entries = s.logMap->compute(SurfacePoint::inFace(mesh, f, Vec3::Constant(1.0 / 3.0)), reach);
+        for (size_t e = 0; e < entries.size(); ++e) s.slot[entries[e].vertex] = static_cast<int>(e);
+        s.faceStamp[f] = f;
+        for (const LogMapEntry& entry : entries) {
+          mesh.forEachOutgoing(entry.vertex, [&](int h) {
+            const int g = Mesh::faceOf(h);
+            if (s.faceStamp[g] == f) return;
+            s.faceStamp[g] = f;
+            Vec2 c = Vec2::Zero();
+            for (int w : mesh.face(g)) {
+              if (s.slot[w] < 0) return;
+              c += entries[s.slot[w]].coords();
+            }
+            const double d2 = (c / 3).squaredNorm();
+            if (d2 > out.radius * out.radius) return;
+            faces.push_back(g);
+            weights.push_back(static_cast<float>(mean_shift_detail::kernelExp(-d2 * k)));
+          });
+        }
+        for (const LogMapEntry& entry : entries) s.slot[entry.vertex] = -1;
+      } else {
+        // Faces reached from f across edges while their centroids stay within r of f's (straight
+        // distance on the support).
+        s.faceStamp[f] = f;
+        s.queue.assign(1, f);
+        for (size_t q = 0; q < s.queue.size(); ++q) {
+          const int a = s.queue[q];
+          for (int k3 = 0; k3 < 3; ++k3) {
+            const int t = mesh.twin(3 * a + k3);
+            if (t < 0) continue;
+            const int g = Mesh::faceOf(t);
+            if (s.faceStamp[g] == f) continue;
+            s.faceStamp[g] = f;
+            const double d2 = (centroids[g] - centroids[f]).squaredNorm();
+            if (d2 > out.radius * out.radius) continue;
+            s.queue.push_back(g);
+            faces.push_back(g);
+            weights.push_back(static_cast<float>(mean_shift_detail::kernelExp(-d2 * k)));
           }
-          const double d2 = (c / 3).squaredNorm();
-          if (d2 > out.radius * out.radius) return;
-          faces.push_back(g);
-          weights.push_back(static_cast<float>(mean_shift_detail::kernelExp(-d2 * k)));
-        });
+        }
       }
-      for (const LogMapEntry& entry : entries) s.slot[entry.vertex] = -1;
       // A fixed order within the row (the log map's order is deterministic too, but sorting makes the
       // rows independent of it).
       std::vector<int> order(faces.size() - 1);

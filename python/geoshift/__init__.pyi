@@ -112,7 +112,7 @@ class DenoiseOptions:
     preset: Literal["default", "paper"]
     noise_level: float
     strength: float
-    range_bandwidth: float
+    range_bandwidths: List[float]
     neighborhood: FaceNeighborhoodOptions
     support_smoothing: TaubinOptions
     presmoothing: List[int]
@@ -127,10 +127,10 @@ class DenoiseOptions:
     alpha: List[float]
     wavelet: WaveletOptions
     def __init__(self, *, preset: Literal["default", "paper"] = "default", noise_level: float = 0.0,
-                 strength: float = 1.0, range_bandwidth: float = 0.35,
+                 strength: float = 1.0, range_bandwidths: Sequence[float] = (0.35,),
                  neighborhood: Union[FaceNeighborhoodOptions, dict, None] = None,
                  support_smoothing: Union[TaubinOptions, dict, None] = None, presmoothing: Sequence[int] = (2, 10),
-                 max_passes: int = 20, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
+                 max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
                  levels: int = 0, alpha: Sequence[float] = (0.0,),
                  wavelet: Union[WaveletOptions, dict, None] = None) -> None: ...

@@ -188,7 +188,7 @@ void bindOptions(py::module_& m) {
       m, "DenoiseOptions", "Mesh denoising: face-normal mean shift with SURE (default) or the paper's pipeline.");
   denoise.def_readwrite("noise_level", &DenoiseOptions::noiseLevel)
       .def_readwrite("strength", &DenoiseOptions::strength)
-      .def_readwrite("range_bandwidth", &DenoiseOptions::rangeBandwidth)
+      .def_readwrite("range_bandwidths", &DenoiseOptions::rangeBandwidths)
       .def_readwrite("neighborhood", &DenoiseOptions::neighborhood)
       .def_readwrite("support_smoothing", &DenoiseOptions::supportSmoothing)
       .def_readwrite("presmoothing", &DenoiseOptions::presmoothing)

@@ -182,7 +182,7 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   };
   refuses([](DenoiseOptions& o) { o.strength = 0; }, "strength 0");
   refuses([](DenoiseOptions& o) { o.noiseLevel = -1; }, "negative noise");
-  refuses([](DenoiseOptions& o) { o.rangeBandwidth = std::nan(""); }, "NaN h_r");
+  refuses([](DenoiseOptions& o) { o.rangeBandwidths = {0.35, std::nan("")}; }, "NaN h_r");
   refuses([](DenoiseOptions& o) { o.presmoothing.clear(); }, "no presmoothing candidate");
   refuses([](DenoiseOptions& o) { o.neighborhood.radius = 0; }, "radius 0");
   refuses([](DenoiseOptions& o) { o.maxPasses = 0; }, "no passes");

@@ -61,13 +61,14 @@ struct DenoiseOptions {
   double noiseLevel = 0;
   // Multiplies the noise level the risk estimate assumes: above 1 smooths more, below 1 less.
   double strength = 1;
-  // h_r of the face normal shift (chord length between unit normals): smaller keeps more edges.
-  double rangeBandwidth = 0.35;
+  // Candidate h_r of the face normal shift (chord length between unit normals): smaller keeps more
+  // edges, larger smooths organic shapes more evenly. The risk estimate picks one.
+  std::vector<double> rangeBandwidths = {0.35};
   FaceNeighborhoodOptions neighborhood;  // r = 1.75 AEL, h_s = 0.6 AEL, on the support
   TaubinOptions supportSmoothing;        // the support the neighbourhoods are found on (10 steps)
   // Candidate Taubin steps before the passes; the risk estimate picks one (and its pass count).
   std::vector<int> presmoothing = {2, 10};
-  int maxPasses = 20;
+  int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk
   int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
   int vertexIterations = 10;
@@ -90,6 +91,7 @@ struct DenoiseResult {
   double noiseLevel = 0;        // used, in average edge lengths (after `strength`)
   bool noiseEstimated = false;  // from the mesh (noiseLevel option 0)
   int presmoothingSteps = 0;    // chosen
+  double rangeBandwidth = 0;    // chosen
   int passes = 0;               // chosen
   int passesRun = 0;            // computed, all candidates
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL

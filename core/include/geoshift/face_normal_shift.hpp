@@ -1,7 +1,8 @@
 #pragma once
-// Blurring mean shift of face normals over geodesic neighbourhoods (docs/denoising.md#pipeline):
-// the normal-filtering half of the default denoiser. Each face's neighbourhood is found once, by a
-// log map from its centroid on a support surface, and reused by every pass.
+// Blurring mean shift of face normals over surface neighbourhoods (docs/denoising.md#pipeline):
+// the normal-filtering half of the default denoiser. Each face's neighbourhood is found once on a
+// support surface (faces reached across edges within r, or a log map from its centroid) and
+// reused by every pass.
 #include <cstddef>
 #include <vector>
 
@@ -14,11 +15,15 @@ namespace geoshift {
 struct FaceNeighborhoodOptions {
   double radius = 1.75;           // geodesic radius around a face centroid, in average edge lengths
   double spatialBandwidth = 0.6;  // h_s of the spatial Gaussian, in average edge lengths
+  // Distances from log maps on the support (geodesic) instead of straight distances between
+  // centroids of faces reached across edges. Within r = 1.75 AEL of a smoothed support the two
+  // differ little and the straight ones cost a fraction (docs/denoising.md#neighbourhoods).
+  bool geodesic = false;
   ParallelOptions parallel;
 };
 
 // For face f, the faces g whose centroid lies within `radius` of f's centroid (f itself first), and
-// the spatial kernel exp(-d²/2h_s²) of their geodesic distance d. Compressed rows.
+// the spatial kernel exp(-d²/2h_s²) of their distance d. Compressed rows.
 struct FaceNeighborhoods {
   std::vector<int> start;          // faceCount + 1 offsets into face / spatialWeight
   std::vector<int> face;
