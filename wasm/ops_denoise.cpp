@@ -107,7 +107,7 @@ OpOutput runDenoise(const OpContext& context) {
     } else {
       o.noiseLevel = p.number("noise", 0, 0, 1e6);
       o.strength = p.number("strength", 1, 1e-6, 1e6);
-      if (p.has("hr")) o.rangeBandwidths = {p.number("hr", 0.35, 1e-6, 1e6)};
+      if (p.has("hr")) o.rangeBandwidths = {p.number("hr", o.rangeBandwidths.front(), 1e-6, 1e6)};
       o.neighborhood.spatialBandwidth = p.number("hs", o.neighborhood.spatialBandwidth, 1e-6, 1e6);
       o.neighborhood.radius = p.number("radius", o.neighborhood.radius, 1e-6, 1e6);
       o.fixedPasses = p.integer("passes", 0, 0, 10000);  // 0: chosen by SURE

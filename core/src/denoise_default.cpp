@@ -137,6 +137,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   VertexUpdateOptions update;
   update.iterations = o.vertexIterations;
   update.flipGuard = FlipGuard::InputOrTarget;
+  update.parallel = parallel;
   auto pass = [&](Track& t) {
     work.positions() = t.positions;
     const std::vector<Vec3> targets =

@@ -221,6 +221,13 @@ export class FilterControls {
       rows.push(['Time', `${(report.wallMs / 1000).toFixed(2)} s (${(report.computeMs / 1000).toFixed(2)} s computing)`]);
       rows.push(['Vertices', `${count.format(report.vertices)}${report.meshes > 1 ? ` in ${report.meshes} meshes` : ''}`]);
       if (report.iterations !== null) rows.push(['Iterations', count.format(report.iterations)]);
+      const estimate = report.stats.find((st) => typeof st.noiseLevel === 'number');
+      if (estimate) {
+        const level = (estimate.noiseLevel as number).toPrecision(2);
+        rows.push(['Noise level', `${level} × AEL${estimate.noiseEstimated === 'yes' ? ' (measured on the mesh)' : ''}`]);
+        if (typeof estimate.presmoothingSteps === 'number')
+          rows.push(['Chosen', `${estimate.presmoothingSteps} Taubin steps + ${estimate.passes} passes`]);
+      }
       if (report.error) {
         const pct = (v: number) => `${((100 * v) / Math.max(report.error!.diagonal, 1e-30)).toFixed(3)}%`;
         rows.push(['Error vs. before noise', `${report.error.rms.toPrecision(3)} RMS (${pct(report.error.rms)} of the size)`]);

@@ -104,7 +104,13 @@ export class ParameterPanel {
       const c = gui.add(values, 'signal', this.signalChoices()).name('Attribute to filter');
       c.domElement.title = `The per-vertex value to smooth: one from the file, or ${HEIGHT}, the height of each vertex along the mesh's thinnest axis.`;
     }
-    for (const param of preset.params) addController(gui, values, param);
+    for (const param of preset.params.filter((p) => !p.expert)) addController(gui, values, param);
+    const expertParams = preset.params.filter((p) => p.expert);
+    if (expertParams.length) {
+      const folder = gui.addFolder('Expert settings');
+      for (const param of expertParams) addController(folder, values, param);
+      folder.close();
+    }
     this.gui = gui;
   }
 }

@@ -32,7 +32,10 @@ export interface FlagParam {
   tooltip: string;
 }
 
-export type Param = NumberParam | ChoiceParam | FlagParam;
+export type Param = (NumberParam | ChoiceParam | FlagParam) & {
+  /** Folded away under "Expert settings" in the panel. */
+  expert?: boolean;
+};
 
 export interface Preset {
   id: string;
@@ -53,6 +56,9 @@ export interface Preset {
 }
 
 const AEL = '× AEL';
+
+/** A parameter shown in the preset's folded "Expert settings". */
+const expert = <P extends Param>(p: P): P => ({ ...p, expert: true });
 
 const num = (key: string, label: string, unit: string, value: number, min: number, max: number, step: number, tooltip: string): NumberParam => ({
   key, kind: 'number', label, unit, value, min, max, step, tooltip,
@@ -84,14 +90,17 @@ const alpha = (v: number) => num('alpha', 'Detail gain α', '', v, 0, 2, 0.05, '
 export const PRESETS: Preset[] = [
   {
     id: 'denoise', name: 'Denoise', op: 'denoise',
-    summary: 'Removes scanner noise from the surface while keeping sharp edges and corners.',
+    summary: 'Removes scanner noise from the surface while keeping sharp edges and corners. Auto measures the noise on the mesh and picks how much to smooth.',
     fixed: { method: 'meanshift' },
     params: [
-      radius(4), hs(3),
-      num('hr', 'Feature preservation h_r', 'normal dissimilarity', 0.45, 0.05, 2, 0.01, 'How different two normals may be and still be averaged. Smaller keeps more edges sharp.'),
-      kmax(50), eps(0.2), passes(3),
-      num('vertexIterations', 'Vertex update steps', '', 20, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.'),
-      levels(0), alpha(1),
+      num('strength', 'Strength', '× the noise', 1, 0.25, 4, 0.05, 'How hard to smooth, relative to the noise measured on the mesh (or given below). Above 1 smooths more, below 1 keeps more fine detail.'),
+      num('hr', 'Keep edges', 'normal tolerance', 0.35, 0.1, 1, 0.01, 'How different two surface directions may be and still be averaged. Smaller keeps more edges and corners sharp; larger smooths organic shapes more evenly.'),
+      num('noise', 'Noise level (0 = Auto)', AEL, 0, 0, 3, 0.01, 'How far the scan points scatter around the true surface. 0 measures it on the mesh; the result panel shows the value found.'),
+      expert(num('passes', 'Passes (0 = Auto)', '', 0, 0, 60, 1, 'Rounds of normal filtering and vertex update. 0 lets the risk estimate choose.')),
+      expert(num('radius', 'Neighbourhood radius r', AEL, 1.75, 0.5, 10, 0.05, 'How far around each face the normals are averaged.')),
+      expert(num('hs', 'Spatial bandwidth h_s', AEL, 0.6, 0.1, 5, 0.05, 'How quickly the influence of a neighbouring face fades with its distance.')),
+      expert(num('vertexIterations', 'Vertex update steps', '', 10, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.')),
+      expert(levels(0)), expert(alpha(1)),
     ],
   },
   {

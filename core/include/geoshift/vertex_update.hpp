@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "geoshift/mesh.hpp"
+#include "geoshift/parallel.hpp"
 #include "geoshift/progress.hpp"
 
 namespace geoshift {
@@ -26,6 +27,8 @@ struct VertexUpdateOptions {
   // per face (a denoiser running several passes gives the normals of its own input, so that no
   // face ends up flipped against the mesh it was given, however many passes).
   std::vector<Vec3> referenceNormals;
+  // Threads of the per-face and per-vertex loops; results do not depend on them.
+  ParallelOptions parallel;
 };
 
 struct VertexUpdateResult {
