@@ -88,6 +88,8 @@ Outcome bilateralTuned(const Mesh& noisy, const Mesh& clean) {
 double evalStrength = 1;  // --strength, --max-passes: what-ifs of the default denoiser's options
 int evalMaxPasses = 0;
 std::vector<double> evalRange;
+std::vector<int> evalPresmoothing;
+int evalVertexIterations = 0;
 
 Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   Mesh m = noisy;
@@ -96,6 +98,8 @@ Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   o.strength = evalStrength;
   if (evalMaxPasses > 0) o.maxPasses = evalMaxPasses;
   if (!evalRange.empty()) o.rangeBandwidths = evalRange;
+  if (!evalPresmoothing.empty()) o.presmoothing = evalPresmoothing;
+  if (evalVertexIterations > 0) o.vertexIterations = evalVertexIterations;
   const DenoiseResult r = denoise(m, o);
   std::ostringstream note;
   note.precision(3);
@@ -327,7 +331,7 @@ int usage(const char* error) {
                "  --mesh      only meshes whose name contains SUBSTRING (case-insensitive)\n"
                "  --quick     a small subset, as a smoke test\n"
                "  --pairs     only the ground-truth pairs\n"
-               "  --strength, --max-passes, --hr (list)  the default denoiser's options of those names\n"
+               "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations  the default denoiser's options of those names\n"
                "  --method    only methods whose name contains SUBSTRING\n"
                "  --noise-estimate  only the estimated against the true noise level of each case\n"
                "  --markdown  also write the tables to FILE\n"
@@ -356,6 +360,10 @@ int main(int argc, char** argv) {
       else if (a == "--pairs") pairsOnly = true;
       else if (a == "--strength") evalStrength = std::stod(value());
       else if (a == "--max-passes") evalMaxPasses = std::stoi(value());
+      else if (a == "--presmoothing") {
+        std::stringstream list(value());
+        for (std::string item; std::getline(list, item, ',');) evalPresmoothing.push_back(std::stoi(item));
+      } else if (a == "--vertex-iterations") evalVertexIterations = std::stoi(value());
       else if (a == "--hr") {
         std::stringstream list(value());
         for (std::string item; std::getline(list, item, ',');) evalRange.push_back(std::stod(item));
