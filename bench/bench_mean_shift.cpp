@@ -1,4 +1,4 @@
-// Mean shift with the paper's parameter sets (ALGORITHMS.md §0.4) on tori of 10k and 100k vertices
+// Mean shift with the paper's parameter sets (docs/algorithms.md#presets) on tori of 10k and 100k vertices
 // and on terrains (procedural, and real LiDAR when ../shared/data is there), on one thread and on
 // all: milliseconds per vertex (the paper's Table 2 works out to about 1 ms per vertex for MS and
 // 3 ms for BMS on one 3 GHz thread; our target is 20× less per thread).
@@ -119,7 +119,7 @@ void BM_MeanShift(benchmark::State& state) {
 }
 
 // The terrain sets on what the paper times them on: a terrain's coarse mesh after six wavelet
-// levels (ALGORITHMS.md Table 2; the hybrid filter's mean shift), here a 320 x 320 procedural
+// levels (the paper's Table 2; the hybrid filter's mean shift), here a 320 x 320 procedural
 // terrain's (10,946 vertices), with its vegetation height. Its hills are a few h_s across, so
 // climbs go much farther than on the torus. Arguments: workload (2 terrain-ms, 3 terrain-bms),
 // threads (1 / 0 = all).

@@ -1,4 +1,4 @@
-// Riemannian mean shift (ALGORITHMS.md §0, §8): the per-vertex climb and the passes around it.
+// Riemannian mean shift (docs/algorithms.md#mean-shift): the per-vertex climb and the passes around it.
 #include "geoshift/mean_shift.hpp"
 
 #include <algorithm>

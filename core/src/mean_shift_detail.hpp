@@ -121,7 +121,7 @@ class ChartStore {
         budget_(budget), keepFirst_(keepFirst) {}
   // Whether to keep the chart at v (group < 0) or group's that a worker just computed: in one pass,
   // most charts serve the climbs of one neighbourhood and are never needed again (copying them all
-  // made the color set 3-4% slower), so only one computed before is.
+  // made the color set slower: docs/algorithms.md#charts), so only one computed before is.
   bool worthKeeping(int v, int group) {
     return (group >= 0 ? seenGroup_[group] : seenVertex_[v]).exchange(true, std::memory_order_relaxed) || keepFirst_;
   }
@@ -257,8 +257,8 @@ class Climber {
   // another group's anchor) and charts at vertices (climbs that start outside their group's chart,
   // or leave theirs elsewhere). The most recent stay, since the climbs of neighbouring vertices
   // head for the same modes along the same paths. A chart is the same whenever it is computed, so
-  // what is cached never changes a result. Up to 64 are kept (terrain-ms on a terrain's coarse mesh
-  // computed 2.1x fewer vertex charts than with 12), fewer when charts are large: about 32 MB.
+  // what is cached never changes a result. Up to 64 are kept (docs/algorithms.md#charts), fewer
+  // when charts are large: about 32 MB.
   struct VertexChart {
     int vertex = -1, group = -1, pass = -1;  // a vertex's chart (group −1) or a group's start chart
     bool pinned = false;  // the current anchor: not evicted

@@ -1,4 +1,4 @@
-// Riemannian mean shift (ALGORITHMS.md §8, §9.6): fixed points, the h_r → ∞ limit against a
+// Riemannian mean shift (docs/algorithms.md#mean-shift; docs/testing.md#what-tests-assert): fixed points, the h_r → ∞ limit against a
 // brute-force geodesic Gaussian, a noisy two-region step, blurring passes, threads, cancel.
 #include <catch2/catch.hpp>
 

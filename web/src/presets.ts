@@ -1,5 +1,5 @@
 // The presets of the side panel: which op each runs and every parameter it sends, with the unit
-// and a plain-words explanation shown as a tooltip. Values follow ALGORITHMS.md §0.4 (the paper's
+// and a plain-words explanation shown as a tooltip. Values follow docs/algorithms.md#presets (the paper's
 // settings). Spatial parameters are multiples of the mesh's average edge length (AEL).
 
 export interface NumberParam {

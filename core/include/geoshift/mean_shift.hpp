@@ -1,6 +1,6 @@
 #pragma once
 // Riemannian mean shift and blurring mean shift of vertex signals (the paper's Algorithm 1;
-// ALGORITHMS.md §0 and §8), with segmentation by modes.
+// docs/algorithms.md#mean-shift), with segmentation by modes.
 //
 // Every vertex i starts an iterate p at itself and climbs the density estimate
 //   f(p, y) = Σ_j k_s(d(p, x_j)² / h_s²) · Π_c k_r(dist_c(y_c, f_j,c)² / h_r,c²)
