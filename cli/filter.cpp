@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "filter_signal.hpp"
 #include "geoshift/error.hpp"
+#include "geoshift/filter_request.hpp"
 #include "geoshift/presets.hpp"
 
 namespace geoshift::cli {
@@ -41,10 +42,7 @@ FilterSettings settingsOf(const FilterArgs& a) {
   if (!a.signal.empty()) s.signal = a.signal;
   if (s.signal.empty()) s.signal = "color";
   MeanShiftOptions& o = s.options;
-  if (a.mode == "ms") o.passes = 1;
-  if (a.mode == "bms" && !a.passes && o.passes == 1) o.passes = 10;
-  if (a.passes) o.passes = *a.passes;
-  if (a.mode == "ms" && o.passes != 1) throw InputError("--mode ms runs one pass; use --mode bms for --passes > 1");
+  o.passes = filterPasses(a.mode, a.passes, o.passes);
   if (a.hs) o.spatialBandwidth = *a.hs;
   if (a.hr) {
     o.rangeBandwidth = *a.hr;

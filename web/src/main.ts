@@ -75,6 +75,7 @@ function start(): Promise<void> {
 
   const workerReady = client.ready().then(
     (info) => {
+      panel.setCorePresets(info.presets);
       panel.setAvailableOps(info.ops);
       filters.refresh();
       return info;
