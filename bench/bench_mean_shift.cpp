@@ -4,7 +4,7 @@
 // 3 ms for BMS on one 3 GHz thread; our target is 20× less per thread).
 // Arguments: workload, vertices (10k / 100k), threads (1 / 0 = all), charts (0 shared, the default /
 // 1 exact / 2 shared over cubes of chartCell only, chartDistortion = 0 / 3 no charts kept beyond a
-// worker's own cache, chartCacheBytes = 0).
+// worker's own cache, chartCacheBytes = 0; all MeanShiftTuning).
 // Counters: ms_per_vertex (wall time / vertices), iterations (mean per vertex per pass), converged,
 // start_charts (groups), log_maps (charts computed, all passes).
 // Every run filters every vertex of the mesh once (one benchmark iteration).
@@ -81,8 +81,8 @@ void report(benchmark::State& state, const MeanShiftResult& r, int n) {
   state.counters["iterations"] = benchmark::Counter(r.meanIterations);
   state.counters["converged"] = benchmark::Counter(r.convergedFraction);
   state.counters["vertices"] = benchmark::Counter(n);
-  state.counters["start_charts"] = benchmark::Counter(r.startCharts);
-  state.counters["log_maps"] = benchmark::Counter(static_cast<double>(r.chartsComputed));
+  state.counters["start_charts"] = benchmark::Counter(r.diagnostics.startCharts);
+  state.counters["log_maps"] = benchmark::Counter(static_cast<double>(r.diagnostics.chartsComputed));
 }
 
 void BM_MeanShift(benchmark::State& state) {
@@ -106,13 +106,13 @@ void BM_MeanShift(benchmark::State& state) {
     default: o = filterPreset("curvature-bms").options; break;
   }
   o.parallel.threads = static_cast<int>(state.range(2));
-  o.exactCharts = state.range(3) == 1;
-  if (state.range(3) == 2) o.chartDistortion = 0;
-  if (state.range(3) == 3) o.chartCacheBytes = 0;
+  o.tuning.exactCharts = state.range(3) == 1;
+  if (state.range(3) == 2) o.tuning.chartDistortion = 0;
+  if (state.range(3) == 3) o.tuning.chartCacheBytes = 0;
   MeanShiftResult r;
   for (auto _ : state) r = meanShift(f.geometry, *signal, o);
   const int n = f.mesh.vertexCount();
-  state.SetLabel(std::string(kNames[workload]) + (o.exactCharts ? " exact" : "") +
+  state.SetLabel(std::string(kNames[workload]) + (o.tuning.exactCharts ? " exact" : "") +
                  (state.range(3) == 2 ? " unmerged" : state.range(3) == 3 ? " nothing kept" : "") +
                  " threads=" + std::to_string(r.threads));
   report(state, r, n);
@@ -227,7 +227,7 @@ void BM_ChartAccuracy(benchmark::State& state) {
   const AttributeSet& signal = workload == 0 ? f.color : f.scalar;
   const std::string name = workload == 0 ? "COLOR" : "_VEGETATION_HEIGHT";
   o.parallel.threads = 0;
-  if (state.range(2) == 0) o.chartDistortion = 0;
+  if (state.range(2) == 0) o.tuning.chartDistortion = 0;
   // The exact run of a workload and mesh serves both merge settings.
   static std::map<std::pair<int, int>, MeanShiftResult> exactRuns;
   MeanShiftResult fast;
@@ -236,7 +236,7 @@ void BM_ChartAccuracy(benchmark::State& state) {
     auto& exact = exactRuns[{workload, vertices}];
     if (exact.signal.vertexCount() == 0) {
       MeanShiftOptions e = o;
-      e.exactCharts = true;
+      e.tuning.exactCharts = true;
       exact = meanShift(f.geometry, signal, e);
     }
   }
@@ -258,7 +258,7 @@ void BM_ChartAccuracy(benchmark::State& state) {
   state.counters["p999"] = benchmark::Counter(quantile(0.999));
   state.counters["signal_max"] = benchmark::Counter(range);
   state.counters["speedup"] = benchmark::Counter(exact.seconds / fast.seconds);
-  state.counters["start_charts"] = benchmark::Counter(fast.startCharts);
+  state.counters["start_charts"] = benchmark::Counter(fast.diagnostics.startCharts);
 }
 
 // The 10k torus is too curved for merged cubes (both settings give the same groups); the 100k one

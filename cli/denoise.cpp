@@ -111,8 +111,8 @@ Command addDenoise(CLI::App& app) {
   sub->add_option("--face-normals", a->faceRule,
                   "meanshift: consensus (default: corners that disagree with the face drop out) or mean (the paper)")
       ->check(CLI::IsMember({"consensus", "mean"}));
-  sub->add_flag("--exact-charts", ms.exactCharts, "meanshift: a fresh log map at every iteration (slower reference)");
-  sub->add_flag("--double-weights", [options = &ms](std::int64_t) { options->singlePrecisionKernel = false; },
+  sub->add_flag("--exact-charts", ms.tuning.exactCharts, "meanshift: a fresh log map at every iteration (slower reference)");
+  sub->add_flag("--double-weights", [options = &ms](std::int64_t) { options->tuning.singlePrecisionKernel = false; },
                 "meanshift: kernel weights in double precision (slower reference)");
   sub->add_option("--support-iterations", a->meanShift.support.iterations,
                   "meanshift: Taubin steps of the smoothed copy that carries the log and exp maps")

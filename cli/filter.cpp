@@ -56,8 +56,8 @@ FilterSettings settingsOf(const FilterArgs& a) {
   if (a.levels) s.hybrid.levels = *a.levels;
   if (!a.alpha.empty()) s.hybrid.alpha = a.alpha;
   s.hybrid.filterGeometry = a.filterGeometry;
-  o.exactCharts = a.exactCharts;
-  o.singlePrecisionKernel = !a.doubleWeights;
+  o.tuning.exactCharts = a.exactCharts;
+  o.tuning.singlePrecisionKernel = !a.doubleWeights;
   o.segments = a.segments;
   o.parallel.threads = a.threads;
   return s;

@@ -63,10 +63,10 @@ struct Setup {
   double vertexArea = 0;  // the mean area per vertex
   double rangeTolerance2 = 0;
   double cell = 0;        // side of the smallest cube of vertices sharing a start chart (0: off)
-  double distortion = 0;  // MeanShiftOptions::chartDistortion
+  double distortion = 0;  // MeanShiftTuning::chartDistortion
   int kmax = 0;
   bool joint = false, exact = false;
-  bool singlePrecision = true;  // the specialised loops' weights (MeanShiftOptions::singlePrecisionKernel)
+  bool singlePrecision = true;  // the specialised loops' weights (MeanShiftTuning::singlePrecisionKernel)
   double weightScale = 1;       // 1 / the mean sample weight
   // The kernel loop's specialised form for this channel set (Climber::kernelSums), or General.
   enum class Loop { General, Gaussian, Similarity } loop = Loop::General;
@@ -98,7 +98,7 @@ struct Chart {
 };
 
 // Vertices grouped by cubes of side setup.cell, or by cubes of 2 or 4 times that side where the
-// surface is flat enough (MeanShiftOptions::chartDistortion); one group per vertex when the cell is
+// surface is flat enough (MeanShiftTuning::chartDistortion); one group per vertex when the cell is
 // 0. Each has the vertex nearest its centroid as anchor and the reach of its cube (its diagonal);
 // groups and their order depend only on the mesh.
 struct Groups {
@@ -110,7 +110,7 @@ Groups groupVertices(const Setup& setup);
 
 // Charts that workers computed (in one pass, those computed twice), kept for the rest of the filter
 // (every climb and pass): a worker whose own cache evicted such a chart copies it from here instead
-// of computing the log map again. Within a byte budget (a quarter of MeanShiftOptions::chartCacheBytes); results
+// of computing the log map again. Within a byte budget (a quarter of MeanShiftTuning::chartCacheBytes); results
 // never depend on what is kept. Thread-safe; a kept chart is never changed or removed.
 class ChartStore {
  public:
@@ -214,7 +214,7 @@ class Climber {
   Climb run(const std::vector<double>& signal, int v, double* out, const Chart* start = nullptr);
   // Call before each pass: the signal changes between passes, the charts do not.
   void beginPass() { ++pass_; }
-  // Log maps this worker computed (charts), for MeanShiftResult::chartsComputed.
+  // Log maps this worker computed (charts), for MeanShiftDiagnostics::chartsComputed.
   long long chartsComputed() const { return charts_; }
 
   LogMap logMap;

@@ -183,8 +183,8 @@ py::dict meanShiftCall(Built& b, const std::vector<std::string>& signal, const p
   out["converged_fraction"] = c.convergedFraction;
   out["threads"] = c.threads;
   out["seconds"] = r.seconds > 0 ? r.seconds : c.seconds;
-  out["start_charts"] = c.startCharts;
-  out["charts_computed"] = c.chartsComputed;
+  out["start_charts"] = c.diagnostics.startCharts;
+  out["charts_computed"] = c.diagnostics.chartsComputed;
   return out;
 }
 
