@@ -9,7 +9,7 @@
 
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
-#include "mean_shift_detail.hpp"
+#include "mean_shift_climb.hpp"
 
 namespace geoshift {
 
@@ -152,10 +152,10 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   std::vector<Climber> climbers;
   climbers.reserve(result.threads);
   climbers.emplace_back(s, std::move(first));
-  for (int w = 1; w < result.threads; ++w) climbers.emplace_back(s, climbers.front().logMap.fork());
+  for (int w = 1; w < result.threads; ++w) climbers.emplace_back(s, climbers.front().charts.logMap.fork());
 
   const Groups groups = groupVertices(s);
-  for (Climber& c : climbers) c.setGroups(&groups);
+  for (Climber& c : climbers) c.charts.setGroups(&groups);
   const int groupCount = static_cast<int>(groups.anchor.size());
   if (s.cell > 0) result.diagnostics.startCharts = groupCount;
   ParallelOptions parallel = options.parallel;
@@ -173,15 +173,15 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   std::atomic<bool> cacheFull{false};
   ChartStore store(n, groupCount, stored, options.tuning.chartCacheBytes / 4, options.passes > 1);
   if (!s.exact && options.tuning.chartCacheBytes > 0)
-    for (Climber& c : climbers) c.setStore(&store);
+    for (Climber& c : climbers) c.charts.setStore(&store);
   std::vector<int> passIterations(n);
   long long total = 0;
   for (int pass = 0; pass < options.passes; ++pass) {
     const std::string stage =
         options.passes == 1 ? "mean shift" : "blurring pass " + std::to_string(pass + 1) + "/" + std::to_string(options.passes);
     for (Climber& c : climbers) {
-      c.beginPass();
-      c.setGroupCharts(cacheCharts ? &cache : nullptr, &ready);
+      c.charts.beginPass();
+      c.charts.setGroupCharts(cacheCharts ? &cache : nullptr, &ready);
     }
     parallelFor(groupCount, parallel, progress, stage, double(pass) / options.passes,
                 double(pass + 1) / options.passes, [&](int g, int worker) {
@@ -189,21 +189,21 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
                   if (cacheCharts) {
                     // Filled in the first pass; a chart is the same whichever worker computes it.
                     if (pass == 0) {
-                      cache[g] = climber.anchorChart(groups.anchor[g], groups.reach[g]);
-                      climber.useAnchor(cache[g]);
+                      cache[g] = climber.charts.anchorChart(groups.anchor[g], groups.reach[g]);
+                      climber.charts.useAnchor(cache[g]);
                       own[g].resize(groups.start[g + 1] - groups.start[g]);
                       long long bytes = ChartStore::bytesOf(cache[g]);
                       for (int k = groups.start[g]; k < groups.start[g + 1]; ++k)
-                        if (!climber.startsInAnchor(groups.vertex[k])) {
-                          own[g][k - groups.start[g]] = climber.vertexStartChart(groups.vertex[k]);
+                        if (!climber.charts.startsInAnchor(groups.vertex[k])) {
+                          own[g][k - groups.start[g]] = climber.charts.vertexStartChart(groups.vertex[k]);
                           bytes += ChartStore::bytesOf(own[g][k - groups.start[g]]);
                         }
                       if (cached.fetch_add(bytes) + bytes > options.tuning.chartCacheBytes) cacheFull = true;
                       ready[g].store(true, std::memory_order_release);
                     }
-                    climber.useAnchor(cache[g]);
+                    climber.charts.useAnchor(cache[g]);
                   } else if (s.cell > 0) {
-                    climber.setAnchor(g, current);
+                    climber.charts.setAnchor(g, current);
                   }
                   for (int k = groups.start[g]; k < groups.start[g + 1]; ++k) {
                     const int v = groups.vertex[k];
@@ -214,7 +214,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
                     passIterations[v] = c.iterations;
                     if (!c.converged) result.converged[v] = 0;
                   }
-                  climber.clearAnchor();
+                  climber.charts.clearAnchor();
                 });
     if (cacheFull) {  // over budget: later passes compute their charts again (same results)
       cacheCharts = false;
@@ -229,7 +229,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
     current.swap(next);
   }
 
-  for (const Climber& c : climbers) result.diagnostics.chartsComputed += c.chartsComputed();
+  for (const Climber& c : climbers) result.diagnostics.chartsComputed += c.charts.chartsComputed();
   result.signal = AttributeSet(n);
   for (const Channel& c : s.channels) {
     std::vector<double> values(static_cast<size_t>(n) * c.dim);
