@@ -107,7 +107,6 @@ py::dict meanShiftCall(Built& b, const std::vector<std::string>& signal, const p
                        double unit, const py::object& callback) {
   const Inputs in = inputsOf(b, colors, attributes, unitVectors);
   const Mesh& mesh = b.mesh();
-  const int n = mesh.vertexCount();
   MeanShiftOptions options = given;
   const bool channelsGiven = !given.channels.empty();
   HybridOptions hybrid;
