@@ -60,7 +60,8 @@ HybridResult filterPart(const Document& doc, MeshPart& part, const MeshBuild& bu
       std::cerr << "\r" << stage << " " << static_cast<int>(100 * f) << "%   " << std::flush;
     };
   const FilterSignal signal = filterSignal(mesh, settings.signal, inputsOf(doc, part, &build),
-                                           settings.rangeGiven ? settings.options.rangeBandwidth : 0, progress);
+                                           settings.rangeGiven ? std::optional(settings.options.rangeBandwidth) : std::nullopt,
+                                           progress);
   MeanShiftOptions options = settings.options;
   options.channels = signal.channels;
   HybridResult hybrid = hybridMeanShift(mesh, signal.values, options, settings.hybrid, progress);

@@ -61,7 +61,7 @@ OpOutput runFilter(const OpContext& context) {
                                                                                         : RangeUpdate::Joint;
   o.segments = p.flag("segments", false);
   o.parallel.threads = context.threads(p.integer("threads", 0, 0, 1024));
-  const double hr = p.has("hr") ? p.number("hr", 0.1, 1e-12, 1e12) : 0;
+  const std::optional<double> hr = p.has("hr") ? std::optional(p.number("hr", 0.1, 1e-12, 1e12)) : std::nullopt;
 
   const FilterSignal signal = filterSignal(mesh, p.text("signal", "color"), inputsOf(s), hr, context.progress);
   o.channels = signal.channels;

@@ -69,8 +69,8 @@ std::string missingSignal(const std::string& signal, const SignalInputs& in) {
   return "";
 }
 
-FilterSignal filterSignal(const Mesh& mesh, const std::string& signal, const SignalInputs& in, double rangeBandwidth,
-                          const Progress& progress) {
+FilterSignal filterSignal(const Mesh& mesh, const std::string& signal, const SignalInputs& in,
+                          std::optional<double> rangeBandwidth, const Progress& progress) {
   const std::vector<std::string> names = expandTerrain(in, splitSignalNames(signal));
   if (names.empty()) throw InputError("the signal '" + signal + "' names no attribute");
   FilterSignal out;
@@ -115,7 +115,7 @@ FilterSignal filterSignal(const Mesh& mesh, const std::string& signal, const Sig
       out.values.set(channel, a.dim, a.kind, std::move(a.values));
       source = SignalSource::Attribute;
     }
-    out.channels.push_back({channel, rangeBandwidth > 0 ? rangeBandwidth : hr, kernel});
+    out.channels.push_back({channel, rangeBandwidth.value_or(hr), kernel});
     out.sources.push_back(source);
   }
   return out;

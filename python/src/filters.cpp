@@ -129,7 +129,7 @@ py::dict meanShiftCall(Built& b, const std::vector<std::string>& signal, const p
     };
     std::string list;
     for (const std::string& name : signal) list += (list.empty() ? "" : ",") + name;
-    const FilterSignal request = filterSignal(mesh, list, inputs, rangeGiven ? given.rangeBandwidth : 0, progress);
+    const FilterSignal request = filterSignal(mesh, list, inputs, rangeGiven ? std::optional(given.rangeBandwidth) : std::nullopt, progress);
     const AttributeSet& set = request.values;
     const std::vector<SignalChannel>& channels = request.channels;
     static const char* const kinds[] = {"color", "normal", "curvature", "attribute"};

@@ -95,6 +95,8 @@ TEST_CASE("each signal gets its channel, kernel and default range bandwidth", "[
 
   const FilterSignal given = filterSignal(f.mesh, "color,height", f.inputs(), 0.7);
   for (const SignalChannel& c : given.channels) CHECK(c.rangeBandwidth == 0.7);
+  // A given bandwidth is passed on as it is, for meanShift to refuse when it is not positive.
+  CHECK(filterSignal(f.mesh, "height", f.inputs(), -1.0).channels[0].rangeBandwidth == -1.0);
 }
 
 TEST_CASE("terrain stands for the height attribute and the class", "[filter_request]") {

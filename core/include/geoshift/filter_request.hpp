@@ -50,10 +50,11 @@ std::string missingSignal(const std::string& signal, const SignalInputs& inputs)
 // "normal" (vertex normals of the mesh's geometry, eq. 8, h_r 0.45), "curvature" (absolute
 // curvature), attribute names (findSignalName); "terrain" alone stands for _HEIGHT_ABOVE_GROUND
 // (else _VEGETATION_HEIGHT) and _CLASS. Scalars' default h_r: spreadBandwidth of their values.
-// rangeBandwidth > 0 replaces every default. Throws InputError, naming inputs.where, for a signal
-// the mesh lacks, an empty list, or an attribute named twice.
+// A given rangeBandwidth replaces every default (meanShift refuses one that is not positive).
+// Throws InputError, naming inputs.where, for a signal the mesh lacks, an empty list, or an
+// attribute named twice.
 FilterSignal filterSignal(const Mesh& mesh, const std::string& signal, const SignalInputs& inputs,
-                          double rangeBandwidth = 0, const Progress& progress = {});
+                          std::optional<double> rangeBandwidth = std::nullopt, const Progress& progress = {});
 
 // The pass count of a request: mode "ms" is one pass (InputError if `passes` asks for more),
 // "bms" blurring passes (`passes`, else 10 when `base` is 1), "" `passes` alone (else `base`,
