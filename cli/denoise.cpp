@@ -178,8 +178,8 @@ Command addDenoise(CLI::App& app) {
   paperOnly(sub->add_option("--face-normals", a->faceRule,
                             "meanshift paper: consensus (default: corners that disagree with the face drop out) or mean (the paper)")
                 ->check(CLI::IsMember({"consensus", "mean"})));
-  paperOnly(sub->add_flag("--exact-charts", ms.exactCharts, "meanshift paper: a fresh log map at every iteration (slower reference)"));
-  paperOnly(sub->add_flag("--double-weights", [options = &ms](std::int64_t) { options->singlePrecisionKernel = false; },
+  paperOnly(sub->add_flag("--exact-charts", ms.tuning.exactCharts, "meanshift paper: a fresh log map at every iteration (slower reference)"));
+  paperOnly(sub->add_flag("--double-weights", [options = &ms](std::int64_t) { options->tuning.singlePrecisionKernel = false; },
                           "meanshift paper: kernel weights in double precision (slower reference)"));
   paperOnly(sub->add_option("--support-iterations", d.paper.support.iterations,
                             "meanshift paper: Taubin steps of the smoothed copy that carries the log and exp maps")

@@ -1,5 +1,5 @@
-// denoise_eval: the denoising evaluation table (issue 5, ALGORITHMS.md §0.5, §7). Clean meshes are
-// scaled to the unit cube, given the §0.5 noise in both readings with fixed seeds, and denoised by
+// denoise_eval: the denoising scoreboard (docs/denoising.md#scoreboard). Clean meshes are
+// scaled to the unit cube, given noise of 0.5 AEL in random directions (fixed and uniform magnitude) with fixed seeds, and
 // every method in `methods()`; the ground-truth pairs of ../shared/data are evaluated as they are.
 // Prints one Markdown table per mesh and noise, then a summary.
 //   denoise_eval [--mesh SUBSTRING] [--quick] [--markdown FILE] [--data DIR]

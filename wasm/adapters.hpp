@@ -37,4 +37,8 @@ emscripten::val runWithoutProgress(int handle, const std::string& op, const emsc
 // ops(): the names of the ops this build knows (the web app asks before offering a preset).
 emscripten::val listOps();
 
+// presets(): the core's filter presets (filterPresets()) as parameter objects of the filter op,
+// with name, description and signal; the web app takes its preset values from here.
+emscripten::val listPresets();
+
 }  // namespace geoshift::wasm

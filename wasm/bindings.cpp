@@ -13,4 +13,5 @@ EMSCRIPTEN_BINDINGS(geoshift) {
   emscripten::function("run", &geoshift::wasm::run);
   emscripten::function("run", &geoshift::wasm::runWithoutProgress);
   emscripten::function("ops", &geoshift::wasm::listOps);
+  emscripten::function("presets", &geoshift::wasm::listPresets);
 }

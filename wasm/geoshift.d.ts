@@ -186,6 +186,27 @@ export interface GeoshiftModule {
   run<Op extends OpName>(handle: number, op: Op, params: OpParams[Op], onProgress?: ProgressCallback): RunResult;
   /** Names of the ops this build knows. */
   ops(): string[];
+  /** The core's filter presets (the CLI's --preset), as parameters of the filter op. */
+  presets(): FilterPreset[];
+}
+
+/** A filter preset of the core (core/src/presets.cpp): the filter op's parameters and what it is. */
+export interface FilterPreset {
+  name: string;
+  description: string;
+  /** The signal it is meant for: color, normal, curvature, terrain. */
+  signal: string;
+  mode: 'ms' | 'bms';
+  passes: number;
+  hs: number;
+  hr: number;
+  /** In AEL; the core's default 3 hs written out. */
+  radius: number;
+  eps: number;
+  kmax: number;
+  rangeUpdate: 'joint' | 'sampled';
+  levels: number;
+  alpha: number;
 }
 
 /** Emscripten module options the app may need; all optional. */

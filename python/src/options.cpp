@@ -118,6 +118,10 @@ void bindOptions(py::module_& m) {
   py::implicitly_convertible<py::dict, SignalChannel>();
   py::implicitly_convertible<py::tuple, SignalChannel>();
 
+  // The speed and accuracy knobs (MeanShiftTuning) stay flat keywords in Python.
+#define TUNING(field)                                                             \
+  [](const MeanShiftOptions& o) { return o.tuning.field; },                       \
+      [](MeanShiftOptions& o, decltype(MeanShiftTuning::field) v) { o.tuning.field = v; }
   auto ms = optionsClass<MeanShiftOptions>(m, "MeanShiftOptions",
                                            "Options of the Riemannian (blurring) mean shift; spatial ones in average "
                                            "edge lengths (AEL), range ones in the signal's units.");
@@ -128,18 +132,19 @@ void bindOptions(py::module_& m) {
       .def_readwrite("epsilon", &MeanShiftOptions::epsilon)
       .def_readwrite("max_iterations", &MeanShiftOptions::maxIterations)
       .def_readwrite("passes", &MeanShiftOptions::passes)
-      .def_readwrite("exact_charts", &MeanShiftOptions::exactCharts)
-      .def_readwrite("recentre", &MeanShiftOptions::recentre)
-      .def_readwrite("chart_cell", &MeanShiftOptions::chartCell)
-      .def_readwrite("chart_distortion", &MeanShiftOptions::chartDistortion)
-      .def_readwrite("chart_cache_bytes", &MeanShiftOptions::chartCacheBytes)
+      .def_property("exact_charts", TUNING(exactCharts))
+      .def_property("recentre", TUNING(recentre))
+      .def_property("chart_cell", TUNING(chartCell))
+      .def_property("chart_distortion", TUNING(chartDistortion))
+      .def_property("chart_cache_bytes", TUNING(chartCacheBytes))
       .def_readwrite("area_weighted", &MeanShiftOptions::areaWeighted)
-      .def_readwrite("single_precision_kernel", &MeanShiftOptions::singlePrecisionKernel)
+      .def_property("single_precision_kernel", TUNING(singlePrecisionKernel))
       .def_readwrite("segments", &MeanShiftOptions::segments)
       .def_readwrite("parallel", &MeanShiftOptions::parallel)
       .def_property(
           "threads", [](const MeanShiftOptions& o) { return o.parallel.threads; },
           [](MeanShiftOptions& o, int t) { o.parallel.threads = t; }, "parallel.threads");
+#undef TUNING
   enumField(ms, "range_kernel", &MeanShiftOptions::rangeKernel, kernels);
   enumField(ms, "range_update", &MeanShiftOptions::rangeUpdate,
             {{"sampled", RangeUpdate::Sampled}, {"joint", RangeUpdate::Joint}});

@@ -31,6 +31,13 @@ export interface FilterElements {
 
 const count = new Intl.NumberFormat('en-US');
 
+/** What a run left: its report when it succeeded, its message when not, and its progress events. */
+export interface RunLog {
+  report: RunReport | null;
+  error: string | null;
+  progressEvents: ProgressEvent[];
+}
+
 export class FilterControls {
   private model: LoadedModel | null = null;
   private fileName = '';
@@ -38,10 +45,7 @@ export class FilterControls {
   private busy = false;
   private cancelRequested = false;
   private noiseSeed = 1;
-  /** For the tests: the last finished run, and every progress event of the current/last run. */
-  lastReport: RunReport | null = null;
-  lastError: string | null = null;
-  progressEvents: ProgressEvent[] = [];
+  private log: RunLog = { report: null, error: null, progressEvents: [] };
   private current: Promise<void> = Promise.resolve();
 
   constructor(
@@ -81,7 +85,7 @@ export class FilterControls {
     this.states = meshStates(model.meshes);
     this.el.beforeToggle.checked = false;
     this.el.split.value = '0';
-    this.lastReport = null;
+    this.log.report = null;
     this.showMetrics(null);
     this.scalars.setStates(this.states);
     this.panel.setScalarChoices(this.scalarChoices());
@@ -94,9 +98,9 @@ export class FilterControls {
     return this.current;
   }
 
-  /** Positions of every mesh (tests compare builds and exports with them). */
-  positions(): Float32Array[] {
-    return this.states.map((s) => Float32Array.from(s.mesh.geometry.getAttribute('position').array as ArrayLike<number>));
+  /** What the last run left (read by the test hooks, test-hooks.ts). */
+  get runLog(): Readonly<RunLog> {
+    return this.log;
   }
 
   meshes(): Mesh[] {
@@ -112,8 +116,8 @@ export class FilterControls {
     if (this.busy || this.states.length === 0) return this.current;
     this.busy = true;
     this.cancelRequested = false;
-    this.lastError = null;
-    this.progressEvents = [];
+    this.log = { report: null, error: null, progressEvents: [] };
+    const log = this.log;
     this.updateButtons();
     this.progress.start(preset.name);
     this.status.working(`${preset.name}: running on ${this.fileName}…`);
@@ -121,16 +125,16 @@ export class FilterControls {
     const task = async () => {
       try {
         const report = await runOnMeshes(this.client, states, preset, params, (event) => {
-          this.progressEvents.push(event);
+          log.progressEvents.push(event);
           this.progress.update(event.fraction, event.stage, event.stageFraction);
         }, () => this.cancelRequested);
         if (states !== this.states) return; // another file was opened meanwhile
-        this.lastReport = report;
+        log.report = report;
         this.afterRun(preset, report, params.segments === true);
       } catch (error) {
-        this.lastError = describeRunFailure(error);
-        this.progress.idle(this.lastError);
-        this.status.error(`${preset.name}: ${this.lastError}`);
+        log.error = describeRunFailure(error);
+        this.progress.idle(log.error);
+        this.status.error(`${preset.name}: ${log.error}`);
       } finally {
         this.busy = false;
         this.updateButtons();
@@ -163,7 +167,7 @@ export class FilterControls {
     for (const state of this.states) revert(state);
     this.scalars.setStates(this.states);
     this.viewer.geometryChanged();
-    this.lastReport = null;
+    this.log.report = null;
     this.showMetrics(null);
     this.updateComparison();
     this.updateButtons();

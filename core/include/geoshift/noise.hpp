@@ -1,5 +1,5 @@
 #pragma once
-// Seeded synthetic noise for demos and the denoising benchmark (ALGORITHMS.md §0.5, §7).
+// Seeded synthetic noise for demos and the denoising benchmark (docs/algorithms.md#noise-and-error-metrics).
 // Uses its own generators (no std::*_distribution), so the same seed gives the same noise natively
 // and in wasm.
 #include <cstdint>

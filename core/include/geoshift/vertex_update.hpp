@@ -1,5 +1,5 @@
 #pragma once
-// Vertex positions from target face normals (Lee–Wang 2005; Sun et al. 2007; ALGORITHMS.md §3):
+// Vertex positions from target face normals (Lee–Wang 2005; Sun et al. 2007; docs/algorithms.md#vertex-update):
 // the second half of every normal-filtering denoiser.
 #include <vector>
 
