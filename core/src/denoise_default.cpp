@@ -42,7 +42,7 @@ void validate(const DenoiseOptions& o) {
 // One copy of the mesh being denoised: its positions and the face normals its guard refers to.
 struct Track {
   std::vector<Vec3> positions;
-  std::vector<Vec3> reference;
+  const std::vector<Vec3>* reference = nullptr;  // shared by every candidate from the same start
 };
 
 }  // namespace
@@ -118,12 +118,9 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     unbiased = (fit - m * sigma1 * sigma1 + 2 * sigma1 * sigma1 * div) / std::max(1, m);
     return (fit - m * sigma * sigma + 2 * sigma * sigma * div) / std::max(1, m);
   };
-  auto start_track = [&](const std::vector<Vec3>& from) {
-    Track t;
-    t.positions = from;
+  auto referenceOf = [&](const std::vector<Vec3>& from) {
     work.positions() = from;
-    t.reference = faceNormals(work);
-    return t;
+    return faceNormals(work);
   };
   auto presmooth = [&](Track& t, int steps) {
     if (steps == 0) return;
@@ -142,7 +139,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     work.positions() = t.positions;
     const std::vector<Vec3> targets =
         shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), rangeBandwidth, parallel);
-    update.referenceNormals = t.reference;
+    update.referenceNormals = *t.reference;
     VertexUpdateResult u = updateVertices(work, targets, update);
     result.limitedSteps += u.limitedSteps;
     t.positions = std::move(u.positions);
@@ -151,7 +148,8 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
 
   std::vector<Vec3> perturbed = input;
   for (int v = 0; v < n; ++v) perturbed[v] += eps * probe[v] * normals[v];
-  const Track y = start_track(input), yp = start_track(perturbed);
+  const std::vector<Vec3> inputReference = referenceOf(input), perturbedReference = referenceOf(perturbed);
+  const Track y{input, &inputReference}, yp{perturbed, &perturbedReference};
   std::vector<Vec3> best;
   double bestRisk = 0, bestUnbiased = 0;
   struct Candidate {
