@@ -162,15 +162,9 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   if (s.cell > 0) parallel.chunk = 1;  // a group holds up to ~200 vertices: one per hand-out keeps progress prompt
   std::vector<double> current = pack(s, n), next(current.size());
   // Blurring passes climb from the same vertices over the same domain: keep the start charts.
-  bool cacheCharts = s.cell > 0 && options.passes > 1 && options.tuning.chartCacheBytes > 0;
-  std::vector<Chart> cache(cacheCharts ? groupCount : 0);
-  std::vector<std::atomic<bool>> ready(cache.size());  // cache[g] is filled (read by other workers)
-  // And the charts of the vertices that start outside their group's chart (a detour makes them
-  // farther from its anchor than the cube's diagonal, as up a wall of a terrain): per group, its
-  // members' in its order, or none for a member that starts in the group's chart.
-  std::vector<std::vector<Chart>> own(cacheCharts ? groupCount : 0);
-  std::atomic<long long> cached{0}, stored{0};  // bytes of the charts kept here and in the store
-  std::atomic<bool> cacheFull{false};
+  KeptCharts kept(groups, s.cell > 0 && options.passes > 1 && options.tuning.chartCacheBytes > 0,
+                  options.tuning.chartCacheBytes);
+  std::atomic<long long> stored{0};  // bytes of the charts kept in the store
   ChartStore store(n, groupCount, stored, options.tuning.chartCacheBytes / 4, options.passes > 1);
   if (!s.exact && options.tuning.chartCacheBytes > 0)
     for (Climber& c : climbers) c.charts.setStore(&store);
@@ -181,46 +175,27 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
         options.passes == 1 ? "mean shift" : "blurring pass " + std::to_string(pass + 1) + "/" + std::to_string(options.passes);
     for (Climber& c : climbers) {
       c.charts.beginPass();
-      c.charts.setGroupCharts(cacheCharts ? &cache : nullptr, &ready);
+      kept.lend(c.charts);
     }
     parallelFor(groupCount, parallel, progress, stage, double(pass) / options.passes,
                 double(pass + 1) / options.passes, [&](int g, int worker) {
                   Climber& climber = climbers[worker];
-                  if (cacheCharts) {
-                    // Filled in the first pass; a chart is the same whichever worker computes it.
-                    if (pass == 0) {
-                      cache[g] = climber.charts.anchorChart(groups.anchor[g], groups.reach[g]);
-                      climber.charts.useAnchor(cache[g]);
-                      own[g].resize(groups.start[g + 1] - groups.start[g]);
-                      long long bytes = ChartStore::bytesOf(cache[g]);
-                      for (int k = groups.start[g]; k < groups.start[g + 1]; ++k)
-                        if (!climber.charts.startsInAnchor(groups.vertex[k])) {
-                          own[g][k - groups.start[g]] = climber.charts.vertexStartChart(groups.vertex[k]);
-                          bytes += ChartStore::bytesOf(own[g][k - groups.start[g]]);
-                        }
-                      if (cached.fetch_add(bytes) + bytes > options.tuning.chartCacheBytes) cacheFull = true;
-                      ready[g].store(true, std::memory_order_release);
-                    }
-                    climber.charts.useAnchor(cache[g]);
-                  } else if (s.cell > 0) {
+                  // The group's start chart: kept from the first pass, or the provider's own.
+                  if (kept.active())
+                    kept.enterGroup(g, climber.charts, pass == 0);
+                  else if (s.cell > 0)
                     climber.charts.setAnchor(g, current);
-                  }
                   for (int k = groups.start[g]; k < groups.start[g + 1]; ++k) {
                     const int v = groups.vertex[k];
-                    const Chart* ownChart = cacheCharts ? &own[g][k - groups.start[g]] : nullptr;
-                    if (ownChart && ownChart->vertex.empty()) ownChart = nullptr;  // starts in the group's
-                    const Climb c = climber.run(current, v, &next[static_cast<size_t>(v) * s.width], ownChart);
+                    const Chart* own = kept.active() ? kept.own(g, k - groups.start[g]) : nullptr;
+                    const Climb c = climber.run(current, v, &next[static_cast<size_t>(v) * s.width], own);
                     result.modes[v] = c.mode;
                     passIterations[v] = c.iterations;
                     if (!c.converged) result.converged[v] = 0;
                   }
                   climber.charts.clearAnchor();
                 });
-    if (cacheFull) {  // over budget: later passes compute their charts again (same results)
-      cacheCharts = false;
-      cache = {};
-      own = {};
-    }
+    kept.endPass();
     for (int v = 0; v < n; ++v) {
       result.iterations[v] += passIterations[v];
       result.maxIterations = std::max(result.maxIterations, passIterations[v]);

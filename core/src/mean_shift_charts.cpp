@@ -252,4 +252,37 @@ void ChartProvider::clearAnchor() {
   anchorGathered_ = false;
 }
 
+KeptCharts::KeptCharts(const Groups& groups, bool keep, long long budget)
+    : groups_(groups), active_(keep), budget_(budget), group_(keep ? groups.anchor.size() : 0), ready_(group_.size()),
+      members_(group_.size()) {}
+
+void KeptCharts::enterGroup(int g, ChartProvider& charts, bool firstPass) {
+  if (firstPass) {
+    group_[g] = charts.anchorChart(groups_.anchor[g], groups_.reach[g]);
+    charts.useAnchor(group_[g]);
+    members_[g].resize(groups_.start[g + 1] - groups_.start[g]);
+    long long bytes = ChartStore::bytesOf(group_[g]);
+    for (int k = groups_.start[g]; k < groups_.start[g + 1]; ++k)
+      if (!charts.startsInAnchor(groups_.vertex[k])) {
+        members_[g][k - groups_.start[g]] = charts.vertexStartChart(groups_.vertex[k]);
+        bytes += ChartStore::bytesOf(members_[g][k - groups_.start[g]]);
+      }
+    if (bytes_.fetch_add(bytes) + bytes > budget_) full_ = true;
+    ready_[g].store(true, std::memory_order_release);
+  }
+  charts.useAnchor(group_[g]);
+}
+
+const Chart* KeptCharts::own(int g, int k) const {
+  const Chart& chart = members_[g][k];
+  return chart.vertex.empty() ? nullptr : &chart;
+}
+
+void KeptCharts::endPass() {
+  if (!full_) return;
+  active_ = false;
+  group_ = {};
+  members_ = {};
+}
+
 }  // namespace geoshift::mean_shift_detail

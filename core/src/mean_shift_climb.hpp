@@ -110,6 +110,35 @@ class ChartProvider {
   std::vector<double> scratchX_, scratchY_;  // and its coordinates, in log-map order
 };
 
+// The start charts that blurring passes keep from their first pass (the domain does not move
+// between passes): each group's chart, and those of its members that start outside it (a detour
+// up a wall of a terrain puts them farther from the anchor than the cube's diagonal), within a
+// byte budget. Over budget, later passes compute them again: the same results.
+class KeptCharts {
+ public:
+  KeptCharts(const Groups& groups, bool keep, long long budget);
+  bool active() const { return active_; }
+  // Gives the provider the kept group charts to copy from (before each pass).
+  void lend(ChartProvider& charts) const { charts.setGroupCharts(active_ ? &group_ : nullptr, &ready_); }
+  // Before a group's climbs: its kept chart becomes the provider's anchor; in the first pass it is
+  // computed here, with the start charts of the members outside it (any worker: same charts).
+  void enterGroup(int g, ChartProvider& charts, bool firstPass);
+  // The kept start chart of the k-th member of group g, or null when it starts in the group's.
+  const Chart* own(int g, int k) const;
+  // After a pass: drops everything when the first pass went over the budget.
+  void endPass();
+
+ private:
+  const Groups& groups_;
+  bool active_;
+  long long budget_;
+  std::vector<Chart> group_;
+  std::vector<std::atomic<bool>> ready_;  // group_[g] is filled (read by other workers)
+  std::vector<std::vector<Chart>> members_;  // per group, its members' in its order (empty: in the group's)
+  std::atomic<long long> bytes_{0};
+  std::atomic<bool> full_{false};
+};
+
 // A worker's climber: the mean shift of one vertex at a time (eq. 6, 7) over the charts its
 // provider supplies. The result of run() depends only on the vertex and the signal.
 class Climber {

@@ -77,8 +77,9 @@ const hs = (v: number) => num('hs', 'Spatial bandwidth h_s', AEL, v, 0.25, 20, 0
 const kmax = (v: number) => num('kmax', 'Max iterations k_max', '', v, 1, 500, 1, 'Upper limit on mean shift steps per point; points usually settle sooner.');
 const eps = (v: number) => num('eps', 'Convergence ε', AEL, v, 0.01, 2, 0.01, 'A point stops moving once a step is shorter than this.');
 const passes = (v: number) => num('passes', 'Passes', '', v, 1, 50, 1, 'How many times the filter is applied in a row (blurring mean shift uses several).');
-const mode = (v: 'ms' | 'bms' | '' = ''): ChoiceParam => ({
-  key: 'mode', kind: 'choice', label: 'Algorithm', value: v,
+// The mode and the value update of the filter presets come from the module ('' until then).
+const mode = (): ChoiceParam => ({
+  key: 'mode', kind: 'choice', label: 'Algorithm', value: '',
   options: { 'Mean shift (MS)': 'ms', 'Blurring mean shift (BMS)': 'bms' },
   tooltip: 'Mean shift keeps the input fixed while points climb to the nearest mode; blurring mean shift updates the signal after every pass (smoother, faster to flatten).',
 });
