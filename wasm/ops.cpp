@@ -23,7 +23,7 @@ const std::vector<OpEntry>& opTable() {
       {"curvature", runCurvature, {"kind"}},
       {"geodesic", runGeodesic, {"source", "radius"}},
       {"filter", runFilter, {"signal", "mode", "passes", "hs", "hr", "radius", "kmax", "eps", "rangeUpdate", "segments", "threads", "levels", "alpha", "filterGeometry"}},
-      {"denoise", runDenoise, {"method", "hs", "hr", "radius", "kmax", "eps", "passes", "vertexIterations", "rangeUpdate", "faceNormals", "threads", "supportIterations", "normalIterations", "sigmaC", "sigmaS", "neighbors", "iterations", "lambda", "mu", "levels", "alpha"}},
+      {"denoise", runDenoise, {"method", "preset", "noise", "strength", "hs", "hr", "radius", "kmax", "eps", "passes", "vertexIterations", "rangeUpdate", "faceNormals", "threads", "supportIterations", "normalIterations", "sigmaC", "sigmaS", "neighbors", "iterations", "lambda", "mu", "levels", "alpha"}},
   };
   return table;
 }

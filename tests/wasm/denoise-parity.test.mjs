@@ -33,9 +33,14 @@ function denoised(module, params) {
 
 const cases = [
   { params: { passes: 1 }, cli: ['--passes', '1'] },
-  { params: { passes: 2, hs: 2, hr: 0.35, radius: 3, kmax: 20, eps: 0.1, vertexIterations: 8, rangeUpdate: 'sampled' },
-    cli: ['--passes', '2', '--hs', '2', '--hr', '0.35', '--radius', '3', '--kmax', '20', '--eps', '0.1', '--vertex-iterations', '8', '--range-update', 'sampled'] },
-  { params: { passes: 1, faceNormals: 'mean', rangeUpdate: 'joint' }, cli: ['--passes', '1', '--face-normals', 'mean', '--range-update', 'joint'] },
+  { params: {}, cli: [] },  // the default: noise estimated, smoothing chosen by SURE
+  { params: { strength: 2, noise: 0.2, hr: 0.3 }, cli: ['--strength', '2', '--noise', '0.2', '--hr', '0.3'] },
+  { params: { preset: 'paper', passes: 1 }, cli: ['--preset', 'paper', '--passes', '1'] },
+  { params: { preset: 'paper', passes: 2, hs: 2, hr: 0.35, radius: 3, kmax: 20, eps: 0.1, vertexIterations: 8, rangeUpdate: 'sampled' },
+    cli: ['--preset', 'paper', '--passes', '2', '--hs', '2', '--hr', '0.35', '--radius', '3', '--kmax', '20', '--eps', '0.1',
+      '--vertex-iterations', '8', '--range-update', 'sampled'] },
+  { params: { preset: 'paper', passes: 1, faceNormals: 'mean', rangeUpdate: 'joint' },
+    cli: ['--preset', 'paper', '--passes', '1', '--face-normals', 'mean', '--range-update', 'joint'] },
   { params: { method: 'bilateral', normalIterations: 5, sigmaS: 0.3 }, cli: ['--method', 'bilateral', '--normal-iterations', '5', '--sigma-s', '0.3'] },
   { params: { method: 'taubin', iterations: 4 }, cli: ['--method', 'taubin', '--taubin-iterations', '4'] },
 ];
@@ -59,21 +64,27 @@ function offSurfaceRms(positions) {
   return Math.sqrt(sum / (positions.length / 3));
 }
 
-test('the mean shift denoiser brings the noisy box back toward its sides', () => {
+test('the mean shift denoiser brings the noisy box back toward its sides and says what it measured', () => {
   const r = denoised(geoshift, {});
   const before = offSurfaceRms(noisy.positions);
   const afterDenoise = offSurfaceRms(r.positions);
   assert.ok(afterDenoise < 0.7 * before, `off-surface RMS ${before} -> ${afterDenoise}`);
   assert.ok(r.positions.every(Number.isFinite));
   assert.equal(r.positions.length, noisy.positions.length);
-  assert.ok(r.stats.meanIterations > 0 && r.stats.convergedFraction > 0 && r.stats.threads === 1, JSON.stringify(r.stats));
+  assert.equal(r.stats.preset, 'default');
+  assert.equal(r.stats.noiseEstimated, 'yes');
+  assert.ok(r.stats.noiseLevel > 0 && r.stats.passes >= 1 && r.stats.passesRun >= 2 * r.stats.passes, JSON.stringify(r.stats));
+  assert.ok(r.stats.threads === 1, JSON.stringify(r.stats));
+  const paper = denoised(geoshift, { preset: 'paper' });
+  assert.ok(offSurfaceRms(paper.positions) < 0.7 * before);
+  assert.ok(paper.stats.meanIterations > 0 && paper.stats.convergedFraction > 0, JSON.stringify(paper.stats));
 });
 
 test('the threaded build denoises to the same bits with 1 and 4 threads, and as the single-threaded build', async () => {
   threaded = await loadGeoshift({ threads: true });
-  const one = denoised(threaded, { passes: 2, threads: 1 });
-  const four = denoised(threaded, { passes: 2, threads: 4 });
-  const single = denoised(geoshift, { passes: 2 });
+  const one = denoised(threaded, { threads: 1 });
+  const four = denoised(threaded, { threads: 4 });
+  const single = denoised(geoshift, {});
   assert.equal(four.stats.threads, Math.min(4, os.cpus().length));
   assert.ok(sameBits(four.positions, one.positions), '4 threads differ from 1');
   assert.ok(sameBits(single.positions, one.positions), 'the threaded build differs from the single-threaded one');
@@ -92,7 +103,11 @@ test('bad denoise parameters are refused, naming what is wrong', () => {
   expectError({ normalIterations: 3 }, /normalIterations belongs to method "bilateral"/);
   expectError({ method: 'taubin', vertexIterations: 3 }, /vertexIterations does not apply/);
   expectError({ hr: -0.1 }, /parameter hr/);
-  expectError({ passes: 0 }, /parameter passes/);
+  expectError({ passes: -1 }, /parameter passes/);
+  expectError({ preset: 'paper', passes: 0 }, /parameter passes/);
+  expectError({ kmax: 20 }, /kmax does not apply to preset "default"/);
+  expectError({ preset: 'paper', strength: 2 }, /strength does not apply to preset "paper"/);
+  expectError({ strength: 0 }, /parameter strength/);
   expectError({ radius: 'far' }, /radius must be a number/);
   expectError({ method: 'taubin', lambda: 0.5, mu: -0.4 }, /mu|lambda/);
   expectError({ sigma: 1 }, /unknown parameter "sigma"/);
