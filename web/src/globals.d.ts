@@ -25,6 +25,12 @@ interface GeoshiftTestHooks {
   scalar(name: string): Array<number[] | null>;
   /** The bytes Export would download, base64-encoded. */
   exportGlb(): Promise<string>;
+  /** The camera: position, orbit target and up, as [x, y, z]. */
+  camera(): { position: number[]; target: number[]; up: number[] };
+  /** The up axis in use ('+y', '+z', ...). */
+  upAxis(): string;
+  /** The PNG the Snapshot button saves, base64-encoded. */
+  snapshot(): Promise<string>;
 }
 
 interface Window {

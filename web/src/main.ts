@@ -3,6 +3,10 @@
 import './style.css';
 import { App } from './app';
 import { installDropZone } from './dropzone';
+import { installShortcuts } from './keyboard';
+import { installSheet } from './sheet';
+import { saveBlob, snapshotName, snapshotPng } from './snapshot';
+import { axisVector, UpAxisControl } from './up-axis';
 import { FilterControls } from './filter-controls';
 import { Legend } from './legend';
 import { ParameterPanel } from './panel';
@@ -71,7 +75,17 @@ function start(): Promise<void> {
     scalars,
     status,
   );
-  const app = new App(viewer, status, viewMode, (model, fileName) => filters.setModel(model, fileName));
+  const upAxis = new UpAxisControl(element('up-axis-select', HTMLSelectElement), (axis) => viewer.setUp(axisVector(axis)));
+  const app = new App(viewer, status, viewMode, (model, fileName) => {
+    upAxis.modelChanged(model.meshes, fileName);
+    filters.setModel(model, fileName);
+  });
+  const snapshot = () =>
+    snapshotPng(viewer, {
+      viewport: element('viewport', HTMLElement),
+      legend: { element: element('legend', HTMLElement), content: legend.shown() },
+      splitLine: element('split-line', HTMLElement),
+    });
 
   const workerReady = client.ready().then(
     (info) => {
@@ -95,6 +109,14 @@ function start(): Promise<void> {
   });
   installDropZone(document.body, element('drop-overlay', HTMLElement), (file) => void app.openFile(file));
   element('reset-view', HTMLButtonElement).addEventListener('click', () => viewer.fitToView());
+  element('snapshot-button', HTMLButtonElement).addEventListener('click', () => {
+    snapshot().then(
+      (png) => saveBlob(png, snapshotName(app.stats()?.file ?? 'geoshift')),
+      (error: unknown) => status.error(`Could not take a snapshot: ${error instanceof Error ? error.message : String(error)}`),
+    );
+  });
+  installShortcuts(element('run-button', HTMLButtonElement), element('cancel-button', HTMLButtonElement));
+  installSheet(element('panel-toggle', HTMLButtonElement));
   // Alt+click picks the source vertex of the geodesic distance.
   viewer.canvas.addEventListener('click', (event) => {
     if (!event.altKey || panel.preset().op !== 'geodesic') return;
@@ -122,15 +144,19 @@ function start(): Promise<void> {
         const a = mesh.geometry.getAttribute(name);
         return a ? Array.from(a.array as ArrayLike<number>) : null;
       }),
-    exportGlb: async () => {
-      // Base64: a GLB as a JSON array of numbers would be several times larger to pass to a test.
-      const bytes = new Uint8Array(await filters.exportBytes());
-      let binary = '';
-      for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
-      return btoa(binary);
-    },
+    // Base64: bytes as a JSON array of numbers would be several times larger to pass to a test.
+    exportGlb: async () => base64(new Uint8Array(await filters.exportBytes())),
+    camera: () => viewer.cameraState(),
+    upAxis: () => upAxis.axis(),
+    snapshot: async () => base64(new Uint8Array(await (await snapshot()).arrayBuffer())),
   };
   return ready;
+}
+
+function base64(bytes: Uint8Array): string {
+  let binary = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(binary);
 }
 
 void start();

@@ -5,6 +5,7 @@
 import GUI from 'lil-gui';
 import { PRESETS, paramsOf, presetById, type Param, type Preset } from './presets';
 import { HEIGHT } from './runner';
+import { orderSignals } from './signal-order';
 
 export class ParameterPanel {
   private gui: GUI | null = null;
@@ -77,9 +78,9 @@ export class ParameterPanel {
     this.gui?.controllersRecursive().forEach((c) => c.updateDisplay());
   }
 
-  /** File attributes first (a terrain file's own is what its user came for), then the height. */
+  /** Heights first, categories last (signal-order.ts); the first is the default. */
   private signalChoices(): string[] {
-    return [...new Set([...this.scalarChoices.filter((n) => !n.startsWith('_curvature') && n !== '_geodesic'), HEIGHT])];
+    return orderSignals(this.scalarChoices, HEIGHT);
   }
 
   private valuesOf(preset: Preset): Record<string, unknown> {
@@ -103,6 +104,7 @@ export class ParameterPanel {
     if (preset.needsScalar) {
       const c = gui.add(values, 'signal', this.signalChoices()).name('Attribute to filter');
       c.domElement.title = `The per-vertex value to smooth: one from the file, or ${HEIGHT}, the height of each vertex along the mesh's thinnest axis.`;
+      c.domElement.dataset.param = 'signal';
     }
     for (const param of preset.params) addController(gui, values, param);
     this.gui = gui;
