@@ -130,7 +130,8 @@ test('Ctrl+Enter runs the preset and Esc cancels it', async () => {
   // From inside a parameter field too.
   await page.locator('[data-param="iterations"] input').first().focus();
   await page.keyboard.press('Control+Enter');
-  await page.waitForFunction(() => document.body.dataset.busy === 'false' && window.__geoshift.lastRun()?.iterations === 3, null, { timeout: 10_000 });
+  await page.waitForFunction(() => document.body.dataset.busy === 'false' && window.__geoshift.lastRun()?.iterations === 3, null, { timeout: 10_000 })
+    .catch(async (e) => assert.fail(`${e.message}: ${JSON.stringify(await page.evaluate(() => [window.__geoshift.lastRun(), window.__geoshift.lastError(), window.__geoshift.params()]))}`));
   assert.equal(await page.evaluate(() => window.__geoshift.lastError()), null);
 });
 

@@ -3,6 +3,7 @@
 // parameter fields included, and do nothing while their button is disabled.
 
 export function installShortcuts(run: HTMLButtonElement, cancel: HTMLButtonElement): void {
+  // Capture phase: lil-gui stops keydown events of its fields from bubbling.
   document.addEventListener('keydown', (event) => {
     if (event.key === 'Enter' && (event.ctrlKey || event.metaKey) && !event.altKey) {
       if (run.disabled) return;
@@ -13,5 +14,5 @@ export function installShortcuts(run: HTMLButtonElement, cancel: HTMLButtonEleme
       event.preventDefault();
       cancel.click();
     }
-  });
+  }, { capture: true });
 }

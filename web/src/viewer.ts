@@ -145,6 +145,10 @@ export class Viewer {
     const halfHorizontal = Math.atan(Math.tan(halfVertical) * this.camera.aspect);
     // Distance at which the sphere touches the narrower side of the view, plus a small margin.
     const distance = (radius / Math.sin(Math.min(halfVertical, halfHorizontal))) * 1.05;
+    // Motion left over from a drag (damping) would carry the camera away from the new framing.
+    this.controls.enableDamping = false;
+    this.controls.update();
+    this.controls.enableDamping = true;
     this.camera.near = radius / 1000;
     this.camera.far = distance + radius * 100;
     this.camera.up.copy(this.up);
