@@ -29,6 +29,8 @@ interface GeoshiftTestHooks {
   camera(): { position: number[]; target: number[]; up: number[] };
   /** The up axis in use ('+y', '+z', ...). */
   upAxis(): string;
+  /** The current preset's id and the parameters a run would send. */
+  params(): { preset: string; params: Record<string, unknown> };
   /** The PNG the Snapshot button saves, base64-encoded. */
   snapshot(): Promise<string>;
 }

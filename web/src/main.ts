@@ -3,6 +3,7 @@
 import './style.css';
 import { App } from './app';
 import { installDropZone } from './dropzone';
+import { HashSync } from './hash-state';
 import { installShortcuts } from './keyboard';
 import { installSheet } from './sheet';
 import { saveBlob, snapshotName, snapshotPng } from './snapshot';
@@ -124,7 +125,22 @@ function start(): Promise<void> {
     if (hit) panel.set('source', hit.vertex);
   });
 
-  const ready = app.openUrl(SAMPLE.url, SAMPLE.name).then(() => app.settled());
+  const hashSync = new HashSync({
+    panel,
+    up: upAxis,
+    caseId: () => null,
+    openCase: async () => undefined,
+    onIgnored: (message) => status.error(message),
+  });
+  element('up-axis-select', HTMLSelectElement).addEventListener('change', () => hashSync.write(true));
+
+  const ready = app
+    .openUrl(SAMPLE.url, SAMPLE.name)
+    // The presets' availability is known once the worker is up; a link may name any preset.
+    .then(() => workerReady.catch(() => undefined))
+    .then(() => hashSync.restore(location.hash))
+    .then(() => hashSync.replace())
+    .then(() => app.settled());
   window.__geoshift = {
     ready,
     stats: () => app.stats(),
@@ -148,6 +164,7 @@ function start(): Promise<void> {
     exportGlb: async () => base64(new Uint8Array(await filters.exportBytes())),
     camera: () => viewer.cameraState(),
     upAxis: () => upAxis.axis(),
+    params: () => ({ preset: panel.preset().id, params: panel.params() }),
     snapshot: async () => base64(new Uint8Array(await (await snapshot()).arrayBuffer())),
   };
   return ready;

@@ -7,8 +7,15 @@ import { PRESETS, paramsOf, presetById, type Param, type Preset } from './preset
 import { HEIGHT } from './runner';
 import { orderSignals } from './signal-order';
 
+/**
+ * A change in the panel: another preset, a parameter moving (a slider being dragged, a number being
+ * typed) or a parameter settled (slider released, field left, choice picked).
+ */
+export type PanelChange = 'preset' | 'input' | 'commit';
+
 export class ParameterPanel {
   private gui: GUI | null = null;
+  private readonly listeners: Array<(change: PanelChange) => void> = [];
   private readonly values = new Map<string, Record<string, unknown>>();
   private available: Set<string> | null = null;
   /** Extra choices for presets that read a named scalar (Terrain): the mesh's scalar attributes. */
@@ -30,6 +37,7 @@ export class ParameterPanel {
     select.addEventListener('change', () => {
       this.build();
       this.onChange();
+      this.notify('preset');
     });
     this.build();
   }
@@ -76,6 +84,40 @@ export class ParameterPanel {
   set(key: string, value: unknown): void {
     this.valuesOf(this.preset())[key] = value;
     this.gui?.controllersRecursive().forEach((c) => c.updateDisplay());
+    this.notify('commit');
+  }
+
+  /** Told about every change (the URL and the live preview follow the panel). */
+  listen(listener: (change: PanelChange) => void): void {
+    this.listeners.push(listener);
+  }
+
+  /**
+   * Selects a preset and sets its values (a shared link, a gallery case, back/forward) without
+   * telling the listeners: the caller restores a state, it does not make a new one. False when the
+   * preset is unknown or unavailable in this build.
+   */
+  restore(presetId: string, values: Record<string, unknown>): boolean {
+    const preset = presetById(presetId);
+    if (!preset || !this.isAvailable(preset)) return false;
+    Object.assign(this.valuesOf(preset), values);
+    if (this.select.value !== presetId) {
+      this.select.value = presetId;
+      this.build();
+      this.onChange();
+    } else {
+      this.gui?.controllersRecursive().forEach((c) => c.updateDisplay());
+    }
+    return true;
+  }
+
+  /** The values of the current preset as the panel shows them (signal included). */
+  currentValues(): Record<string, unknown> {
+    return { ...this.valuesOf(this.preset()) };
+  }
+
+  private notify(change: PanelChange): void {
+    for (const listener of this.listeners) listener(change);
   }
 
   /** Heights first, categories last (signal-order.ts); the first is the default. */
@@ -107,6 +149,8 @@ export class ParameterPanel {
       c.domElement.dataset.param = 'signal';
     }
     for (const param of preset.params) addController(gui, values, param);
+    gui.onChange(() => this.notify('input'));
+    gui.onFinishChange(() => this.notify('commit'));
     this.gui = gui;
   }
 }
