@@ -38,6 +38,8 @@ export class FilterControls {
   private busy = false;
   private cancelRequested = false;
   private noiseSeed = 1;
+  /** What the error figure is measured against: the mesh before noise, or a clean original. */
+  private referenceName = 'before noise';
   /** For the tests: the last finished run, and every progress event of the current/last run. */
   lastReport: RunReport | null = null;
   lastError: string | null = null;
@@ -78,6 +80,7 @@ export class FilterControls {
     }
     this.model = model;
     this.fileName = fileName;
+    this.referenceName = 'before noise';
     this.states = meshStates(model.meshes);
     this.el.beforeToggle.checked = false;
     this.el.split.value = '0';
@@ -87,6 +90,22 @@ export class FilterControls {
     this.panel.setScalarChoices(this.scalarChoices());
     this.updateComparison();
     this.updateButtons();
+  }
+
+  /**
+   * Gives the clean original of the noisy meshes on screen (same vertices, same order): every run
+   * then reports its error against it, as after Add noise. `name` completes "Error vs. …".
+   */
+  setReference(positions: Float32Array[], name: string): void {
+    if (positions.length !== this.states.length) throw new Error(`the clean original has ${positions.length} meshes, the file ${this.states.length}`);
+    this.states.forEach((state, i) => {
+      const p = positions[i]!;
+      const n = state.mesh.geometry.getAttribute('position').count;
+      if (p.length !== 3 * n) throw new Error(`the clean original of mesh ${i + 1} has ${p.length / 3} vertices, the mesh ${n}`);
+      state.reference = p;
+      state.preNoise = p;
+    });
+    this.referenceName = name;
   }
 
   /** Resolves when no run is in progress. */
@@ -223,7 +242,7 @@ export class FilterControls {
       if (report.iterations !== null) rows.push(['Iterations', count.format(report.iterations)]);
       if (report.error) {
         const pct = (v: number) => `${((100 * v) / Math.max(report.error!.diagonal, 1e-30)).toFixed(3)}%`;
-        rows.push(['Error vs. before noise', `${report.error.rms.toPrecision(3)} RMS (${pct(report.error.rms)} of the size)`]);
+        rows.push([`Error vs. ${this.referenceName}`, `${report.error.rms.toPrecision(3)} RMS (${pct(report.error.rms)} of the size)`]);
         rows.push(['Noisy input had', `${report.error.inputRms.toPrecision(3)} RMS (${pct(report.error.inputRms)})`]);
       }
     }

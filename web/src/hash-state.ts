@@ -73,8 +73,11 @@ export interface HashSyncParts {
   up: { choice(): string; set(choice: string): void };
   /** The gallery case on screen, or null for a file of the person's own or the startup sample. */
   caseId(): string | null;
-  /** Opens a gallery case (Back/Forward across cases); resolves when it is on screen. */
-  openCase(id: string): Promise<void>;
+  /**
+   * Opens a gallery case, or the startup sample for null (Back/Forward across cases); resolves when
+   * it is on screen, rejects when there is no such case.
+   */
+  openCase(id: string | null): Promise<void>;
   /** Told when a link named something this app does not know. */
   onIgnored(message: string): void;
 }
@@ -127,7 +130,14 @@ export class HashSync {
     const state = decodeState(hash);
     this.restoring = true;
     try {
-      if (state.caseId && state.caseId !== this.parts.caseId()) await this.parts.openCase(state.caseId);
+      const wanted = state.caseId ?? null;
+      if (wanted !== this.parts.caseId()) {
+        try {
+          await this.parts.openCase(wanted);
+        } catch (error) {
+          this.parts.onIgnored(error instanceof Error ? error.message : String(error));
+        }
+      }
       if (state.preset) {
         const preset = presetById(state.preset);
         const { values, ignored } = preset ? typedValues(preset, state.values) : { values: {}, ignored: [] };

@@ -3,7 +3,8 @@
 import './style.css';
 import { App } from './app';
 import { installDropZone } from './dropzone';
-import { HashSync } from './hash-state';
+import { Gallery } from './gallery';
+import { decodeState, HashSync } from './hash-state';
 import { installShortcuts } from './keyboard';
 import { installSheet } from './sheet';
 import { saveBlob, snapshotName, snapshotPng } from './snapshot';
@@ -106,9 +107,9 @@ function start(): Promise<void> {
     const file = input.files?.[0];
     // Cleared so that choosing the same file again (after editing it elsewhere) fires 'change'.
     input.value = '';
-    if (file) void app.openFile(file);
+    if (file) openOwn(file);
   });
-  installDropZone(document.body, element('drop-overlay', HTMLElement), (file) => void app.openFile(file));
+  installDropZone(document.body, element('drop-overlay', HTMLElement), (file) => openOwn(file));
   element('reset-view', HTMLButtonElement).addEventListener('click', () => viewer.fitToView());
   element('snapshot-button', HTMLButtonElement).addEventListener('click', () => {
     snapshot().then(
@@ -125,20 +126,42 @@ function start(): Promise<void> {
     if (hit) panel.set('source', hit.vertex);
   });
 
+  const gallery: Gallery = new Gallery(element('gallery', HTMLElement), element('gallery-hint', HTMLElement), {
+    app,
+    panel,
+    filters,
+    base: `${import.meta.env.BASE_URL}gallery/`,
+    onOpened: () => hashSync.write(true),
+    onError: (message) => status.error(message),
+  });
+  let sampleShown = false;
+  const openSample = async () => {
+    gallery.leave();
+    await app.openUrl(SAMPLE.url, SAMPLE.name);
+    sampleShown = app.stats()?.file === SAMPLE.name;
+  };
   const hashSync = new HashSync({
     panel,
     up: upAxis,
-    caseId: () => null,
-    openCase: async () => undefined,
+    // The startup sample counts as "no case" only while it is what is on screen.
+    caseId: () => gallery.current() ?? (sampleShown ? null : '(own file)'),
+    openCase: (id) => (id === null ? openSample() : gallery.open(id)),
     onIgnored: (message) => status.error(message),
   });
   element('up-axis-select', HTMLSelectElement).addEventListener('change', () => hashSync.write(true));
+  const openOwn = (file: File) => {
+    gallery.leave();
+    sampleShown = false;
+    void app.openFile(file).then(() => hashSync.replace());
+  };
 
-  const ready = app
-    .openUrl(SAMPLE.url, SAMPLE.name)
+  // A link to a gallery case opens the case (restore below); any other page starts with the sample.
+  const linkedCase = decodeState(location.hash).caseId;
+  const ready = (linkedCase ? Promise.resolve() : openSample())
     // The presets' availability is known once the worker is up; a link may name any preset.
     .then(() => workerReady.catch(() => undefined))
     .then(() => hashSync.restore(location.hash))
+    .then(() => (app.stats() ? undefined : openSample()))
     .then(() => hashSync.replace())
     .then(() => app.settled());
   window.__geoshift = {
