@@ -12,5 +12,7 @@ EMSCRIPTEN_BINDINGS(geoshift) {
   emscripten::function("freeMesh", &geoshift::wasm::freeMesh);
   emscripten::function("run", &geoshift::wasm::run);
   emscripten::function("run", &geoshift::wasm::runWithoutProgress);
+  emscripten::function("preview", &geoshift::wasm::preview);
+  emscripten::function("preview", &geoshift::wasm::previewWithoutProgress);
   emscripten::function("ops", &geoshift::wasm::listOps);
 }

@@ -45,6 +45,10 @@ export class FilterControls {
   lastError: string | null = null;
   progressEvents: ProgressEvent[] = [];
   private current: Promise<void> = Promise.resolve();
+  /** Takes a live preview off screen before what must not see it (revert, export, a new file). */
+  previewGuard: (reason: 'revert' | 'export' | 'model') => void = () => undefined;
+  /** Told when a run finished (null: failed or cancelled). */
+  onFinished: (report: RunReport | null) => void = () => undefined;
 
   constructor(
     private readonly el: FilterElements,
@@ -73,6 +77,7 @@ export class FilterControls {
   }
 
   setModel(model: LoadedModel, fileName: string): void {
+    this.previewGuard('model');
     for (const old of this.states) {
       old.before?.dispose();
       old.original.dispose();
@@ -118,12 +123,22 @@ export class FilterControls {
     return this.states.map((s) => Float32Array.from(s.mesh.geometry.getAttribute('position').array as ArrayLike<number>));
   }
 
+  /** The meshes of the file on screen, with their states (the live preview works on them). */
+  meshStates(): MeshState[] {
+    return this.states;
+  }
+
+  isBusy(): boolean {
+    return this.busy;
+  }
+
   meshes(): Mesh[] {
     return this.states.map((s) => s.mesh);
   }
 
   async exportBytes(): Promise<ArrayBuffer> {
     if (!this.model) throw new Error('no model is open');
+    this.previewGuard('export');
     return exportGlb(this.model.root, this.model.meshes);
   }
 
@@ -146,7 +161,9 @@ export class FilterControls {
         if (states !== this.states) return; // another file was opened meanwhile
         this.lastReport = report;
         this.afterRun(preset, report, params.segments === true);
+        this.onFinished(report);
       } catch (error) {
+        this.onFinished(null);
         this.lastError = describeRunFailure(error);
         this.progress.idle(this.lastError);
         this.status.error(`${preset.name}: ${this.lastError}`);
@@ -179,6 +196,7 @@ export class FilterControls {
 
   private revert(): void {
     if (this.busy) return;
+    this.previewGuard('revert');
     for (const state of this.states) revert(state);
     this.scalars.setStates(this.states);
     this.viewer.geometryChanged();

@@ -31,6 +31,8 @@ interface GeoshiftTestHooks {
   upAxis(): string;
   /** The current preset's id and the parameters a run would send. */
   params(): { preset: string; params: Record<string, unknown> };
+  /** Every live preview and full result put on screen since the page opened, in order. */
+  previewEvents(): Array<{ kind: 'preview' | 'full'; at: number; vertices: number; ms: number }>;
   /** The PNG the Snapshot button saves, base64-encoded. */
   snapshot(): Promise<string>;
 }

@@ -88,7 +88,7 @@ export class HashSync {
   private moving = false;
 
   constructor(private readonly parts: HashSyncParts) {
-    parts.panel.listen((change) => this.write(change !== 'input'));
+    parts.panel.listen((change) => this.write(change !== 'input' && change !== 'slide'));
     window.addEventListener('popstate', () => {
       this.moving = false;
       void this.restore(location.hash);

@@ -6,6 +6,7 @@ import { installDropZone } from './dropzone';
 import { Gallery } from './gallery';
 import { decodeState, HashSync } from './hash-state';
 import { installShortcuts } from './keyboard';
+import { LivePreview } from './live-preview';
 import { installSheet } from './sheet';
 import { saveBlob, snapshotName, snapshotPng } from './snapshot';
 import { axisVector, UpAxisControl } from './up-axis';
@@ -77,6 +78,16 @@ function start(): Promise<void> {
     scalars,
     status,
   );
+  const live = new LivePreview({
+    client,
+    filters,
+    panel,
+    viewer,
+    scalars,
+    viewMode,
+    kind: element('result-kind', HTMLElement),
+    enabled: element('live-preview', HTMLInputElement),
+  });
   const upAxis = new UpAxisControl(element('up-axis-select', HTMLSelectElement), (axis) => viewer.setUp(axisVector(axis)));
   const app = new App(viewer, status, viewMode, (model, fileName) => {
     upAxis.modelChanged(model.meshes, fileName);
@@ -168,6 +179,7 @@ function start(): Promise<void> {
     ready,
     stats: () => app.stats(),
     settled: async () => {
+      await live.idle();
       await filters.idle();
       await app.settled();
     },
@@ -188,6 +200,7 @@ function start(): Promise<void> {
     camera: () => viewer.cameraState(),
     upAxis: () => upAxis.axis(),
     params: () => ({ preset: panel.preset().id, params: panel.params() }),
+    previewEvents: () => live.events.slice(),
     snapshot: async () => base64(new Uint8Array(await (await snapshot()).arrayBuffer())),
   };
   return ready;

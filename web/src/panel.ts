@@ -8,14 +8,16 @@ import { HEIGHT } from './runner';
 import { orderSignals } from './signal-order';
 
 /**
- * A change in the panel: another preset, a parameter moving (a slider being dragged, a number being
- * typed) or a parameter settled (slider released, field left, choice picked).
+ * A change in the panel: another preset; a slider being dragged ('slide') and let go ('release');
+ * a number being typed ('input') and settled, or a choice picked ('commit').
  */
-export type PanelChange = 'preset' | 'input' | 'commit';
+export type PanelChange = 'preset' | 'slide' | 'release' | 'input' | 'commit';
 
 export class ParameterPanel {
   private gui: GUI | null = null;
   private readonly listeners: Array<(change: PanelChange) => void> = [];
+  /** A lil-gui slider is held (pointer down on it until its change finishes). */
+  private sliding = false;
   private readonly values = new Map<string, Record<string, unknown>>();
   private available: Set<string> | null = null;
   /** Extra choices for presets that read a named scalar (Terrain): the mesh's scalar attributes. */
@@ -39,6 +41,11 @@ export class ParameterPanel {
       this.onChange();
       this.notify('preset');
     });
+    const grab = (event: Event) => {
+      this.sliding = event.target instanceof Element && event.target.closest('.lil-slider') !== null;
+    };
+    container.addEventListener('pointerdown', grab, { capture: true });
+    container.addEventListener('touchstart', grab, { capture: true, passive: true });
     this.build();
   }
 
@@ -149,8 +156,12 @@ export class ParameterPanel {
       c.domElement.dataset.param = 'signal';
     }
     for (const param of preset.params) addController(gui, values, param);
-    gui.onChange(() => this.notify('input'));
-    gui.onFinishChange(() => this.notify('commit'));
+    gui.onChange(() => this.notify(this.sliding ? 'slide' : 'input'));
+    gui.onFinishChange(() => {
+      const released = this.sliding;
+      this.sliding = false;
+      this.notify(released ? 'release' : 'commit');
+    });
     this.gui = gui;
   }
 }
