@@ -1,7 +1,7 @@
-// Live preview: while a parameter moves (a slider dragged, a number typed), the preset's op runs on
-// a coarse wavelet level of each mesh (the module's `preview`, at most MAX_PREVIEW_VERTICES
-// vertices, analysed once per mesh and kept in the worker) and the result is shown at once; when
-// the parameter settles (slider released, field left) the full-resolution run starts and its
+// Live preview: while a parameter slider is dragged, the preset's op runs on
+// a coarse wavelet level of each mesh (the module's `preview`, at most PREVIEW_SIZES vertices,
+// analysed once per mesh and level and kept in the worker) and the result is shown at once; when
+// the slider is released the full-resolution run starts and its
 // result replaces the preview. Only the newest change matters: a preview still running when
 // another change comes is stopped (threaded build) or its result dropped, and the newest runs next.
 // The Result section says which one is on screen (the `result-kind` element).
@@ -17,8 +17,13 @@ import type { ViewModeControl } from './view-mode-control';
 import type { WorkerClient } from './worker/client';
 import type { RunOutput } from './worker/protocol';
 
-/** A coarse level this small previews in well under 200 ms on 2 cores (bench/wasm/preview.mjs). */
-export const MAX_PREVIEW_VERTICES = 25_000;
+/**
+ * Sizes of the coarse level, largest first. A preview starts at the first; one slower than
+ * TARGET_MS moves its preset to the next smaller level, one much faster back up (the mean shift
+ * with a wide neighbourhood costs ~70 µs a vertex on 2 cores, Taubin ~0.5 µs: bench/wasm/preview.mjs).
+ */
+export const PREVIEW_SIZES = [25_000, 12_000, 6_000, 3_000, 1_500];
+const TARGET_MS = 200;
 
 /** Ops whose parameters mean the same on a coarser mesh (not a vertex index, as geodesic's source). */
 const PREVIEWABLE = new Set(['filter', 'denoise', 'smooth', 'curvature']);
@@ -62,6 +67,8 @@ export class LivePreview {
   private loadedStates: MeshState[] = [];
   /** What is on screen when no preview is: the last full result, or nothing. */
   private settled: { kind: ResultKind; text: string } = { kind: 'none', text: '' };
+  /** Per preset: the index in PREVIEW_SIZES its previews use. */
+  private readonly sizeIndex = new Map<string, number>();
   /** For the tests: every preview and full result put on screen. */
   readonly events: PreviewEvent[] = [];
 
@@ -136,11 +143,13 @@ export class LivePreview {
         const outputs: RunOutput[] = [];
         for (const state of states) {
           await this.ensureLoaded(state, job.params);
-          outputs.push(await this.parts.client.preview(previewId(state), job.preset.op, job.params, MAX_PREVIEW_VERTICES));
+          outputs.push(await this.parts.client.preview(previewId(state), job.preset.op, job.params, PREVIEW_SIZES[this.sizeIndex.get(job.preset.id) ?? 0]!));
           if (job.ticket !== this.ticket) break;
         }
         if (job.ticket !== this.ticket || states !== this.parts.filters.meshStates() || this.parts.filters.isBusy()) continue;
-        this.show(job, states, outputs, performance.now() - started);
+        const ms = performance.now() - started;
+        this.adapt(job.preset.id, outputs, ms);
+        this.show(job, states, outputs, ms);
       } catch (error) {
         // A stopped preview is superseded by a newer one; a failing one says why where a run would.
         if (job.ticket === this.ticket && !(error instanceof Error && /cancel/i.test(error.message))) {
@@ -191,6 +200,22 @@ export class LivePreview {
     const coarse = outputs.reduce((t, o) => t + Number(o.stats.previewVertices ?? o.stats.vertices), 0);
     this.setKind('preview', `preview (coarse level, ${coarse.toLocaleString('en-US')} vertices, ${ms.toFixed(0)} ms)`);
     this.events.push({ kind: 'preview', at: performance.now(), vertices: coarse, ms });
+  }
+
+  /**
+   * Picks the preset's coarse level for the next previews from how long this one took (its
+   * analysis not counted): the op's cost grows with the vertex count, so the largest level whose
+   * estimate fits in TARGET_MS. Each new level is analysed once more, so it changes only when needed.
+   */
+  private adapt(presetId: string, outputs: RunOutput[], ms: number): void {
+    const analysis = outputs.reduce((t, o) => t + Number(o.stats.analysisMs ?? 0), 0);
+    const vertices = outputs.reduce((t, o) => t + Number(o.stats.previewVertices ?? o.stats.vertices), 0);
+    const perVertex = Math.max(ms - analysis, 1) / Math.max(vertices, 1);
+    const index = this.sizeIndex.get(presetId) ?? 0;
+    const fits = PREVIEW_SIZES.findIndex((size) => size * perVertex <= TARGET_MS);
+    const next = fits < 0 ? PREVIEW_SIZES.length - 1 : fits;
+    // Up only with a margin, so that a level at the edge does not flip back and forth.
+    if (next > index || (next < index && PREVIEW_SIZES[next]! * perVertex <= 0.7 * TARGET_MS)) this.sizeIndex.set(presetId, next);
   }
 
   private hasPreview(): boolean {
