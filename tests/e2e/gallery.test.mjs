@@ -2,7 +2,7 @@
 // scan reports the error against its clean original, and a link opens a case directly.
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { assertMeshVisible, shoot, useApp, waitForStatusAbout } from './harness.mjs';
+import { assertMeshVisible, openFile, shoot, useApp, waitForStatusAbout } from './harness.mjs';
 
 const app = useApp();
 
@@ -80,6 +80,19 @@ test('a link to a case opens that case with the linked settings', async () => {
   } finally {
     await other.close();
   }
+});
+
+test('a file of one\'s own leaves the case: the hint goes and the URL no longer names it', async () => {
+  const { page } = app;
+  await openCase(page, 'cad-part');
+  const s = await openFile(page, 'mine.off', 'OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n');
+  assert.equal(s.state, 'ok', s.text);
+  assert.equal(await page.getByTestId('gallery-hint').isVisible(), false);
+  assert.doesNotMatch(await page.evaluate(() => decodeURIComponent(location.hash)), /case=/);
+  // Back returns to the case.
+  await page.goBack();
+  await waitForStatusAbout(page, 'fandisk.glb');
+  assert.equal(await page.getByTestId('gallery-hint').isVisible(), true);
 });
 
 test('no uncaught errors in the page', () => {

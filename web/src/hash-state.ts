@@ -73,6 +73,8 @@ export interface HashSyncParts {
   up: { choice(): string; set(choice: string): void };
   /** The gallery case on screen, or null for a file of the person's own or the startup sample. */
   caseId(): string | null;
+  /** A file of the person's own is on screen (a link without a case leaves it there). */
+  ownFile(): boolean;
   /**
    * Opens a gallery case, or the startup sample for null (Back/Forward across cases); resolves when
    * it is on screen, rejects when there is no such case.
@@ -131,7 +133,7 @@ export class HashSync {
     this.restoring = true;
     try {
       const wanted = state.caseId ?? null;
-      if (wanted !== this.parts.caseId()) {
+      if (wanted !== this.parts.caseId() && !(wanted === null && this.parts.ownFile())) {
         try {
           await this.parts.openCase(wanted);
         } catch (error) {

@@ -154,8 +154,8 @@ function start(): Promise<void> {
   const hashSync = new HashSync({
     panel,
     up: upAxis,
-    // The startup sample counts as "no case" only while it is what is on screen.
-    caseId: () => gallery.current() ?? (sampleShown ? null : '(own file)'),
+    caseId: () => gallery.current(),
+    ownFile: () => gallery.current() === null && !sampleShown,
     openCase: (id) => (id === null ? openSample() : gallery.open(id)),
     onIgnored: (message) => status.error(message),
   });
@@ -163,7 +163,7 @@ function start(): Promise<void> {
   const openOwn = (file: File) => {
     gallery.leave();
     sampleShown = false;
-    void app.openFile(file).then(() => hashSync.replace());
+    void app.openFile(file).then(() => hashSync.write(true));
   };
 
   // A link to a gallery case opens the case (restore below); any other page starts with the sample.
