@@ -19,10 +19,10 @@ import type { RunOutput } from './worker/protocol';
 
 /**
  * Sizes of the coarse level, largest first. A preview starts at the first; one slower than
- * TARGET_MS moves its preset to the next smaller level, one much faster back up (the mean shift
- * with a wide neighbourhood costs ~70 µs a vertex on 2 cores, Taubin ~0.5 µs: bench/wasm/preview.mjs).
+ * TARGET_MS moves its preset to a smaller level (the mean shift with a wide neighbourhood costs
+ * ~80 µs a vertex on 2 cores, Taubin ~0.5 µs: bench/wasm/preview.mjs).
  */
-export const PREVIEW_SIZES = [25_000, 12_000, 6_000, 3_000, 1_500];
+export const PREVIEW_SIZES = [25_000, 12_000, 6_000, 3_000];
 const TARGET_MS = 200;
 
 /** Ops whose parameters mean the same on a coarser mesh (not a vertex index, as geodesic's source). */
@@ -81,6 +81,7 @@ export class LivePreview {
     });
     parts.filters.previewGuard = (reason) => {
       this.drop();
+      if (reason === 'model') this.sizeIndex.clear();
       // After a revert or with a new file, no result is on screen any more.
       if (reason !== 'export') this.settled = { kind: 'none', text: '' };
       this.setKind(this.settled.kind, this.settled.text);
@@ -203,19 +204,22 @@ export class LivePreview {
   }
 
   /**
-   * Picks the preset's coarse level for the next previews from how long this one took (its
-   * analysis not counted): the op's cost grows with the vertex count, so the largest level whose
-   * estimate fits in TARGET_MS. Each new level is analysed once more, so it changes only when needed.
+   * Picks the preset's coarse level for the next previews from how long this one took. The op's
+   * share grows with the coarse vertex count; the rest (bringing the result back to every vertex,
+   * drawing it) does not. Levels only go down, and only for the file on screen: each new level is
+   * analysed once more, which takes seconds on a large mesh (bench/wasm/preview.mjs).
    */
   private adapt(presetId: string, outputs: RunOutput[], ms: number): void {
-    const analysis = outputs.reduce((t, o) => t + Number(o.stats.analysisMs ?? 0), 0);
-    const vertices = outputs.reduce((t, o) => t + Number(o.stats.previewVertices ?? o.stats.vertices), 0);
-    const perVertex = Math.max(ms - analysis, 1) / Math.max(vertices, 1);
+    const sum = (key: string) => outputs.reduce((t, o) => t + Number(o.stats[key] ?? 0), 0);
+    const opMs = sum('coarseOpMs');
+    const vertices = Math.max(sum('previewVertices'), 1);
+    const fixedMs = Math.max(ms - sum('analysisMs') - opMs, 0);
+    const perVertex = opMs / vertices;
+    const budget = Math.max(TARGET_MS - fixedMs, TARGET_MS / 2);
     const index = this.sizeIndex.get(presetId) ?? 0;
-    const fits = PREVIEW_SIZES.findIndex((size) => size * perVertex <= TARGET_MS);
-    const next = fits < 0 ? PREVIEW_SIZES.length - 1 : fits;
-    // Up only with a margin, so that a level at the edge does not flip back and forth.
-    if (next > index || (next < index && PREVIEW_SIZES[next]! * perVertex <= 0.7 * TARGET_MS)) this.sizeIndex.set(presetId, next);
+    if (PREVIEW_SIZES[index]! * perVertex <= budget) return;
+    const fits = PREVIEW_SIZES.findIndex((size) => size * perVertex <= budget);
+    this.sizeIndex.set(presetId, fits < 0 ? PREVIEW_SIZES.length - 1 : Math.max(fits, index));
   }
 
   private hasPreview(): boolean {
