@@ -81,8 +81,7 @@ test('the snapshot is the canvas as drawn, with the legend and the split line', 
   assert.equal(await page.getByTestId('split-line').isVisible(), true);
 
   // The view's own buttons float over it but are not part of the picture.
-  await page.addStyleTag({ content: '.view-tools { visibility: hidden; }' });
-  const onScreen = decodePng(await page.getByTestId('viewport').screenshot({ path: `${outputDir}snapshot-page.png` }));
+  const onScreen = decodePng(await page.getByTestId('viewport').screenshot({ path: `${outputDir}snapshot-page.png`, style: '.view-tools { visibility: hidden; }' }));
   const [download] = await Promise.all([page.waitForEvent('download'), page.getByTestId('snapshot-button').click()]);
   assert.equal(download.suggestedFilename(), 'terrain-view.png');
   const saved = await readFile(await download.path());
@@ -114,7 +113,6 @@ test('the snapshot is the canvas as drawn, with the legend and the split line', 
     }
   }
   assert.ok(yellow > 20, `no legend ramp in the snapshot (${yellow} yellow pixels)`);
-  await page.addStyleTag({ content: '.view-tools { visibility: visible; }' });
 });
 
 test('Ctrl+Enter runs the preset and Esc cancels it', async () => {
