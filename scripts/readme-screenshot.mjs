@@ -22,6 +22,8 @@ try {
   const error = await page.evaluate(() => window.__geoshift.lastError());
   if (error) throw new Error(`the run failed: ${error}`);
   await page.getByTestId('split-slider').fill('50');
+  // The gallery and its hint at the top of the panel, as someone opening the link sees it.
+  await page.evaluate(() => document.querySelector('.panel').scrollTo(0, 0));
   await page.evaluate(() => window.__geoshift.settled());
   await page.screenshot({ path: out });
   console.log(`wrote ${out}`);
