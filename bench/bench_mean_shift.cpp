@@ -1,10 +1,10 @@
-// Mean shift with the paper's parameter sets (ALGORITHMS.md §0.4) on tori of 10k and 100k vertices
+// Mean shift with the paper's parameter sets (docs/algorithms.md#presets) on tori of 10k and 100k vertices
 // and on terrains (procedural, and real LiDAR when ../shared/data is there), on one thread and on
 // all: milliseconds per vertex (the paper's Table 2 works out to about 1 ms per vertex for MS and
 // 3 ms for BMS on one 3 GHz thread; our target is 20× less per thread).
 // Arguments: workload, vertices (10k / 100k), threads (1 / 0 = all), charts (0 shared, the default /
 // 1 exact / 2 shared over cubes of chartCell only, chartDistortion = 0 / 3 no charts kept beyond a
-// worker's own cache, chartCacheBytes = 0).
+// worker's own cache, chartCacheBytes = 0; all MeanShiftTuning).
 // Counters: ms_per_vertex (wall time / vertices), iterations (mean per vertex per pass), converged,
 // start_charts (groups), log_maps (charts computed, all passes).
 // Every run filters every vertex of the mesh once (one benchmark iteration).
@@ -81,8 +81,8 @@ void report(benchmark::State& state, const MeanShiftResult& r, int n) {
   state.counters["iterations"] = benchmark::Counter(r.meanIterations);
   state.counters["converged"] = benchmark::Counter(r.convergedFraction);
   state.counters["vertices"] = benchmark::Counter(n);
-  state.counters["start_charts"] = benchmark::Counter(r.startCharts);
-  state.counters["log_maps"] = benchmark::Counter(static_cast<double>(r.chartsComputed));
+  state.counters["start_charts"] = benchmark::Counter(r.diagnostics.startCharts);
+  state.counters["log_maps"] = benchmark::Counter(static_cast<double>(r.diagnostics.chartsComputed));
 }
 
 void BM_MeanShift(benchmark::State& state) {
@@ -106,20 +106,20 @@ void BM_MeanShift(benchmark::State& state) {
     default: o = filterPreset("curvature-bms").options; break;
   }
   o.parallel.threads = static_cast<int>(state.range(2));
-  o.exactCharts = state.range(3) == 1;
-  if (state.range(3) == 2) o.chartDistortion = 0;
-  if (state.range(3) == 3) o.chartCacheBytes = 0;
+  o.tuning.exactCharts = state.range(3) == 1;
+  if (state.range(3) == 2) o.tuning.chartDistortion = 0;
+  if (state.range(3) == 3) o.tuning.chartCacheBytes = 0;
   MeanShiftResult r;
   for (auto _ : state) r = meanShift(f.geometry, *signal, o);
   const int n = f.mesh.vertexCount();
-  state.SetLabel(std::string(kNames[workload]) + (o.exactCharts ? " exact" : "") +
+  state.SetLabel(std::string(kNames[workload]) + (o.tuning.exactCharts ? " exact" : "") +
                  (state.range(3) == 2 ? " unmerged" : state.range(3) == 3 ? " nothing kept" : "") +
                  " threads=" + std::to_string(r.threads));
   report(state, r, n);
 }
 
 // The terrain sets on what the paper times them on: a terrain's coarse mesh after six wavelet
-// levels (ALGORITHMS.md Table 2; the hybrid filter's mean shift), here a 320 x 320 procedural
+// levels (the paper's Table 2; the hybrid filter's mean shift), here a 320 x 320 procedural
 // terrain's (10,946 vertices), with its vegetation height. Its hills are a few h_s across, so
 // climbs go much farther than on the torus. Arguments: workload (2 terrain-ms, 3 terrain-bms),
 // threads (1 / 0 = all).
@@ -227,7 +227,7 @@ void BM_ChartAccuracy(benchmark::State& state) {
   const AttributeSet& signal = workload == 0 ? f.color : f.scalar;
   const std::string name = workload == 0 ? "COLOR" : "_VEGETATION_HEIGHT";
   o.parallel.threads = 0;
-  if (state.range(2) == 0) o.chartDistortion = 0;
+  if (state.range(2) == 0) o.tuning.chartDistortion = 0;
   // The exact run of a workload and mesh serves both merge settings.
   static std::map<std::pair<int, int>, MeanShiftResult> exactRuns;
   MeanShiftResult fast;
@@ -236,7 +236,7 @@ void BM_ChartAccuracy(benchmark::State& state) {
     auto& exact = exactRuns[{workload, vertices}];
     if (exact.signal.vertexCount() == 0) {
       MeanShiftOptions e = o;
-      e.exactCharts = true;
+      e.tuning.exactCharts = true;
       exact = meanShift(f.geometry, signal, e);
     }
   }
@@ -258,7 +258,7 @@ void BM_ChartAccuracy(benchmark::State& state) {
   state.counters["p999"] = benchmark::Counter(quantile(0.999));
   state.counters["signal_max"] = benchmark::Counter(range);
   state.counters["speedup"] = benchmark::Counter(exact.seconds / fast.seconds);
-  state.counters["start_charts"] = benchmark::Counter(fast.startCharts);
+  state.counters["start_charts"] = benchmark::Counter(fast.diagnostics.startCharts);
 }
 
 // The 10k torus is too curved for merged cubes (both settings give the same groups); the 100k one

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -21,7 +22,14 @@ struct DenoiseArgs {
   std::string in, out;
   std::string method = "meanshift";
   DenoiseOptions meanShift;
-  std::string rangeUpdate, preset, faceRule;
+  std::string preset = "default";
+  std::string rangeUpdate, faceRule;
+  // Options both presets have, each with its own default: applied to the preset chosen.
+  std::optional<double> hs, hr, radius;
+  std::optional<int> passes;
+  int threads = 0;
+  // Options of one preset only: refused with the other.
+  std::vector<std::pair<std::string, CLI::Option*>> paperOnly, defaultOnly;
   BilateralNormalOptions bilateral;
   std::string neighborhood = "vertex";
   std::string flipGuard = "input";
@@ -48,13 +56,49 @@ const std::vector<Method>& methods() {
       {"meanshift", "Riemannian mean shift of the vertex normals (the paper's 4.1), then the vertex update",
        [](Mesh& mesh, const DenoiseArgs& a) {
          DenoiseOptions o = a.meanShift;
-         if (a.rangeUpdate == "sampled") o.meanShift.rangeUpdate = RangeUpdate::Sampled;
-         if (a.rangeUpdate == "joint") o.meanShift.rangeUpdate = RangeUpdate::Joint;
-         if (a.faceRule == "mean") o.faceNormals = FaceNormalRule::Mean;
-         o.vertexUpdate = vertexUpdateOf(a, o.vertexUpdate);
+         o.threads = a.threads;
+         if (a.preset == "paper") {
+           o.preset = DenoisePreset::Paper;
+           PaperDenoiseOptions& p = o.paper;
+           MeanShiftOptions& ms = p.meanShift;
+           if (a.hs) ms.spatialBandwidth = *a.hs;
+           if (a.hr) ms.rangeBandwidth = *a.hr;
+           if (a.radius) ms.radius = *a.radius;
+           if (a.passes) p.passes = *a.passes;
+           ms.parallel.threads = a.threads;
+           if (a.rangeUpdate == "sampled") ms.rangeUpdate = RangeUpdate::Sampled;
+           if (a.rangeUpdate == "joint") ms.rangeUpdate = RangeUpdate::Joint;
+           if (a.faceRule == "mean") p.faceNormals = FaceNormalRule::Mean;
+           p.vertexUpdate = vertexUpdateOf(a, p.vertexUpdate);
+           const DenoiseResult r = denoise(mesh, o);
+           std::cerr << "geoshift: mean shift (paper preset) " << p.passes << " passes, iterations mean " << r.meanIterations
+                     << ", converged " << 100 * r.convergedFraction << "%, " << r.threads << " threads\n";
+           return;
+         }
+         if (a.hs) o.neighborhood.spatialBandwidth = *a.hs;
+         if (a.hr) o.rangeBandwidths = {*a.hr};
+         if (a.radius) o.neighborhood.radius = *a.radius;
+         if (a.passes) o.fixedPasses = *a.passes;
+         if (a.vertexIterations >= 0) o.vertexIterations = a.vertexIterations;
          const DenoiseResult r = denoise(mesh, o);
-         std::cerr << "geoshift: mean shift " << o.passes << " passes, iterations mean " << r.meanIterations
-                   << ", converged " << 100 * r.convergedFraction << "%, " << r.threads << " threads\n";
+         std::ostringstream line;
+         line.precision(3);
+         line << "geoshift: noise level " << r.noiseLevel << " AEL"
+              << (r.noiseEstimated ? " (estimated from the mesh" : " (given")
+              << (o.strength != 1 ? ", times strength " : "");
+         if (o.strength != 1) line << o.strength;
+         line << "); ";
+         if (!(r.noiseLevel > 0)) {
+           line << "nothing to remove";
+         } else if (o.fixedPasses > 0) {
+           line << "Taubin " << r.presmoothingSteps << " steps + " << r.passes << " mean shift passes (fixed)";
+         } else {
+           line << "Taubin " << r.presmoothingSteps << " steps + " << r.passes
+                << " mean shift passes chosen by SURE (estimated error " << r.estimatedError << " AEL, "
+                << r.passesRun << " passes computed)";
+         }
+         line << ", " << r.threads << " threads";
+         std::cerr << line.str() << "\n";
        }},
       {"bilateral", "bilateral normal filtering (Zheng et al. 2011), then the vertex update",
        [](Mesh& mesh, const DenoiseArgs& a) {
@@ -91,33 +135,55 @@ Command addDenoise(CLI::App& app) {
   }
   sub->add_option("--method", a->method, help.str())->check(CLI::IsMember(names))->capture_default_str();
 
-  MeanShiftOptions& ms = a->meanShift.meanShift;
-  sub->add_option("--passes", a->meanShift.passes, "meanshift: alternating passes of normal filtering and vertex update")
-      ->capture_default_str()->check(CLI::PositiveNumber);
-  sub->add_option("--hs", ms.spatialBandwidth, "meanshift: spatial bandwidth h_s in average edge lengths")->capture_default_str();
-  sub->add_option("--hr", ms.rangeBandwidth, "meanshift: range bandwidth h_r of the normal kernel (eq. 8)")->capture_default_str();
-  sub->add_option("--radius", ms.radius, "meanshift: truncation radius r in average edge lengths")->capture_default_str();
-  sub->add_option("--kmax", ms.maxIterations, "meanshift: most iterations per vertex and pass")->capture_default_str();
-  sub->add_option("--eps", ms.epsilon, "meanshift: stop when a step is shorter than this, in AEL")->capture_default_str();
-  sub->add_option("--range-update", a->rangeUpdate, "meanshift: sampled (the paper, default) or joint")
-      ->check(CLI::IsMember({"sampled", "joint"}));
-  sub->add_option("--threads", ms.parallel.threads, "meanshift: worker threads (0 = all cores); results do not depend on it")
+  DenoiseOptions& d = a->meanShift;
+  MeanShiftOptions& ms = d.paper.meanShift;
+  sub->add_option("--preset", a->preset,
+                  "meanshift: default (face-normal mean shift, amount of smoothing chosen by SURE from the estimated "
+                  "noise) or paper (the paper's 4.1 pipeline)")
+      ->check(CLI::IsMember({"default", "paper"}))->capture_default_str();
+  sub->add_option("--passes", a->passes,
+                  "meanshift: passes of normal filtering and vertex update (default preset: fixes the count instead of "
+                  "SURE; paper: 3)")->check(CLI::PositiveNumber);
+  sub->add_option("--hs", a->hs, "meanshift: spatial bandwidth h_s in average edge lengths (default 0.6; paper 3)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--hr", a->hr, "meanshift: range bandwidth h_r between unit normals; smaller keeps more edges (default 0.35; paper 0.45)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--radius", a->radius, "meanshift: neighbourhood radius in average edge lengths (default 1.75; paper 4)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--threads", a->threads, "meanshift: worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
-  sub->add_option("--levels", a->meanShift.levels,
+  sub->add_option("--levels", d.levels,
                   "meanshift: wavelet levels; denoise the coarse mesh and restore the details times --alpha")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
-  sub->add_option("--alpha", a->meanShift.alpha, "meanshift: detail gain per level (finest first) or one for all")
-      ->delimiter(',');
-  sub->add_option("--face-normals", a->faceRule,
-                  "meanshift: consensus (default: corners that disagree with the face drop out) or mean (the paper)")
-      ->check(CLI::IsMember({"consensus", "mean"}));
-  sub->add_flag("--exact-charts", ms.exactCharts, "meanshift: a fresh log map at every iteration (slower reference)");
-  sub->add_flag("--double-weights", [options = &ms](std::int64_t) { options->singlePrecisionKernel = false; },
-                "meanshift: kernel weights in double precision (slower reference)");
-  sub->add_option("--support-iterations", a->meanShift.support.iterations,
-                  "meanshift: Taubin steps of the smoothed copy that carries the log and exp maps")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
-  sub->add_option("--preset", a->preset, "paper: the paper's 4.1 settings (the defaults)")->check(CLI::IsMember({"paper"}));
+  sub->add_option("--alpha", d.alpha, "meanshift: detail gain per level (finest first) or one for all")->delimiter(',');
+  auto defaultOnly = [&](CLI::Option* o) { a->defaultOnly.emplace_back(o->get_name(), o); };
+  defaultOnly(sub->add_option("--noise", d.noiseLevel,
+                              "meanshift default: noise level in average edge lengths (0 = estimate it from the mesh)")
+                  ->capture_default_str()->check(CLI::NonNegativeNumber));
+  defaultOnly(sub->add_option("--strength", d.strength, "meanshift default: times the noise level; > 1 smooths more")
+                  ->capture_default_str()->check(CLI::PositiveNumber));
+  defaultOnly(sub->add_option("--presmoothing", d.presmoothing,
+                              "meanshift default: candidate Taubin step counts before the passes, SURE picks one")
+                  ->delimiter(',')->check(CLI::NonNegativeNumber));
+  defaultOnly(sub->add_option("--max-passes", d.maxPasses, "meanshift default: most passes SURE considers")
+                  ->capture_default_str()->check(CLI::PositiveNumber));
+  defaultOnly(sub->add_option("--patience", d.patience, "meanshift default: stop after this many passes without a lower risk")
+                  ->capture_default_str()->check(CLI::PositiveNumber));
+  defaultOnly(sub->add_option("--seed", d.seed, "meanshift default: seed of the risk estimate's probe")->capture_default_str());
+  auto paperOnly = [&](CLI::Option* o) { a->paperOnly.emplace_back(o->get_name(), o); };
+  paperOnly(sub->add_option("--kmax", ms.maxIterations, "meanshift paper: most iterations per vertex and pass")->capture_default_str());
+  paperOnly(sub->add_option("--eps", ms.epsilon, "meanshift paper: stop when a step is shorter than this, in AEL")->capture_default_str());
+  paperOnly(sub->add_option("--range-update", a->rangeUpdate, "meanshift paper: sampled (the paper, default) or joint")
+                ->check(CLI::IsMember({"sampled", "joint"})));
+  paperOnly(sub->add_option("--face-normals", a->faceRule,
+                            "meanshift paper: consensus (default: corners that disagree with the face drop out) or mean (the paper)")
+                ->check(CLI::IsMember({"consensus", "mean"})));
+  paperOnly(sub->add_flag("--exact-charts", ms.tuning.exactCharts, "meanshift paper: a fresh log map at every iteration (slower reference)"));
+  paperOnly(sub->add_flag("--double-weights", [options = &ms](std::int64_t) { options->tuning.singlePrecisionKernel = false; },
+                          "meanshift paper: kernel weights in double precision (slower reference)"));
+  paperOnly(sub->add_option("--support-iterations", d.paper.support.iterations,
+                            "meanshift paper: Taubin steps of the smoothed copy that carries the log and exp maps")
+                ->capture_default_str()->check(CLI::NonNegativeNumber));
   sub->add_option("--normal-iterations", a->bilateral.normalIterations, "bilateral: normal filtering iterations")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   sub->add_option("--sigma-c", a->bilateral.sigmaSpatial,
@@ -141,6 +207,10 @@ Command addDenoise(CLI::App& app) {
 
   return {sub, [a] {
             const Method& method = methodNamed(a->method);
+            const auto& refused = a->preset == "paper" ? a->defaultOnly : a->paperOnly;
+            for (const auto& [name, option] : refused)
+              if (option->count() > 0)
+                throw InputError("denoise: " + name + " does not apply to --preset " + a->preset);
             const auto start = std::chrono::steady_clock::now();
             Document doc = load(a->in);
             long vertices = 0;

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "filter_signal.hpp"
 #include "geoshift/error.hpp"
+#include "geoshift/filter_request.hpp"
 #include "geoshift/presets.hpp"
 
 namespace geoshift::cli {
@@ -41,10 +42,7 @@ FilterSettings settingsOf(const FilterArgs& a) {
   if (!a.signal.empty()) s.signal = a.signal;
   if (s.signal.empty()) s.signal = "color";
   MeanShiftOptions& o = s.options;
-  if (a.mode == "ms") o.passes = 1;
-  if (a.mode == "bms" && !a.passes && o.passes == 1) o.passes = 10;
-  if (a.passes) o.passes = *a.passes;
-  if (a.mode == "ms" && o.passes != 1) throw InputError("--mode ms runs one pass; use --mode bms for --passes > 1");
+  o.passes = filterPasses(a.mode, a.passes, o.passes);
   if (a.hs) o.spatialBandwidth = *a.hs;
   if (a.hr) {
     o.rangeBandwidth = *a.hr;
@@ -58,8 +56,8 @@ FilterSettings settingsOf(const FilterArgs& a) {
   if (a.levels) s.hybrid.levels = *a.levels;
   if (!a.alpha.empty()) s.hybrid.alpha = a.alpha;
   s.hybrid.filterGeometry = a.filterGeometry;
-  o.exactCharts = a.exactCharts;
-  o.singlePrecisionKernel = !a.doubleWeights;
+  o.tuning.exactCharts = a.exactCharts;
+  o.tuning.singlePrecisionKernel = !a.doubleWeights;
   o.segments = a.segments;
   o.parallel.threads = a.threads;
   return s;
@@ -71,7 +69,7 @@ Command addFilter(CLI::App& app) {
   auto a = std::make_shared<FilterArgs>();
   CLI::App* sub = app.add_subcommand(
       "filter", "Riemannian mean shift (--mode ms) or blurring mean shift (--mode bms) of a vertex signal");
-  sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off .ply .stl)")->required();
+  sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off)")->required();
   sub->add_option("-o,--output", a->out, "output mesh; format from its extension")->required();
   sub->add_option("--signal", a->signal,
                   "color (COLOR_0), normal (vertex normals), curvature (absolute), terrain (height above ground "

@@ -1,5 +1,5 @@
-// denoise_eval: the denoising evaluation table (issue 5, ALGORITHMS.md §0.5, §7). Clean meshes are
-// scaled to the unit cube, given the §0.5 noise in both readings with fixed seeds, and denoised by
+// denoise_eval: the denoising scoreboard (docs/denoising.md#scoreboard). Clean meshes are
+// scaled to the unit cube, given noise of 0.5 AEL in random directions (fixed and uniform magnitude) with fixed seeds, and
 // every method in `methods()`; the ground-truth pairs of ../shared/data are evaluated as they are.
 // Prints one Markdown table per mesh and noise, then a summary.
 //   denoise_eval [--mesh SUBSTRING] [--quick] [--markdown FILE] [--data DIR]
@@ -59,22 +59,63 @@ Outcome taubin(const Mesh& noisy, int steps) {
   return {m.positions(), std::to_string(steps) + " steps"};
 }
 
-// The method table. Further denoisers (the mean shift rows) are one entry each.
-// The paper's §4.1 settings; only the range update differs between the rows.
-Outcome meanShiftDenoise(const Mesh& noisy, RangeUpdate update) {
+// Best of a small grid of the bilateral normal filter (σ_r × normal iterations), chosen on the RMS
+// to the clean mesh: a baseline tuned against the ground truth.
+Outcome bilateralTuned(const Mesh& noisy, const Mesh& clean) {
+  Outcome best;
+  double bestRms = std::numeric_limits<double>::infinity();
+  for (double sigma : {0.2, 0.35, 0.5}) {
+    for (int iterations : {5, 10, 20, 40}) {
+      Mesh m = noisy;
+      BilateralNormalOptions o;
+      o.sigmaRange = sigma;
+      o.normalIterations = iterations;
+      const auto t0 = std::chrono::steady_clock::now();
+      bilateralNormalDenoise(m, o);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const double rms = rmsTo(m.positions(), clean);
+      if (rms < bestRms) {
+        bestRms = rms;
+        std::ostringstream note;
+        note << "best of 12: σ_r " << sigma << ", " << iterations << " iterations (time of those alone)";
+        best = Outcome{m.positions(), note.str(), ms};
+      }
+    }
+  }
+  return best;
+}
+
+double evalStrength = 1;  // --strength, --max-passes: what-ifs of the default denoiser's options
+int evalMaxPasses = 0;
+std::vector<double> evalRange;
+std::vector<int> evalPresmoothing;
+int evalVertexIterations = 0;
+
+Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   Mesh m = noisy;
   DenoiseOptions o;
-  o.meanShift.rangeUpdate = update;
+  o.preset = preset;
+  o.strength = evalStrength;
+  if (evalMaxPasses > 0) o.maxPasses = evalMaxPasses;
+  if (!evalRange.empty()) o.rangeBandwidths = evalRange;
+  if (!evalPresmoothing.empty()) o.presmoothing = evalPresmoothing;
+  if (evalVertexIterations > 0) o.vertexIterations = evalVertexIterations;
   const DenoiseResult r = denoise(m, o);
   std::ostringstream note;
   note.precision(3);
-  note << o.passes << " passes, " << r.meanIterations << " iterations/vertex/pass, " << r.threads << " threads";
+  if (preset == DenoisePreset::Paper)
+    note << o.paper.passes << " passes, " << r.meanIterations << " iterations/vertex/pass";
+  else
+    note << "noise " << r.noiseLevel << " AEL (estimated); Taubin " << r.presmoothingSteps << " + " << r.passes
+         << " at h_r " << r.rangeBandwidth
+         << " passes by SURE (est. error " << r.estimatedError << " AEL)";
+  note << ", " << r.threads << " threads";
   return Outcome{m.positions(), note.str()};
 }
 
+// The scoreboard's columns after "noisy": two baselines tuned against the truth, then ours.
 std::vector<Method> methods() {
   return {
-      {"Taubin, MeshLab defaults", [](const Mesh& noisy, const Mesh&) { return taubin(noisy, 10); }},
       {"Taubin, steps tuned on ground truth",
        [](const Mesh& noisy, const Mesh& clean) {
          // One λ|μ pair at a time, keeping the step count with the lowest RMS to the clean mesh.
@@ -97,17 +138,9 @@ std::vector<Method> methods() {
          o.note = "best of 0..200: " + std::to_string(best) + " steps (time of those alone)";
          return o;
        }},
-      {"Bilateral normal (Zheng et al. 2011), defaults",
-       [](const Mesh& noisy, const Mesh&) {
-         Mesh m = noisy;
-         const BilateralNormalResult r = bilateralNormalDenoise(m);
-         std::ostringstream note;
-         note << "20 normal + " << r.vertexUpdate.iterations << " vertex iterations";
-         if (r.vertexUpdate.limitedSteps > 0) note << ", " << r.vertexUpdate.limitedSteps << " steps flip-limited";
-         return Outcome{m.positions(), note.str()};
-       }},
-      {"Riemannian mean shift, joint", [](const Mesh& noisy, const Mesh&) { return meanShiftDenoise(noisy, RangeUpdate::Joint); }},
-      {"Riemannian mean shift, sampled (paper, default)", [](const Mesh& noisy, const Mesh&) { return meanShiftDenoise(noisy, RangeUpdate::Sampled); }},
+      {"Bilateral normal (Zheng et al. 2011), tuned on ground truth", bilateralTuned},
+      {"Mean shift, default", [](const Mesh& noisy, const Mesh&) { return meanShiftDenoise(noisy, DenoisePreset::Default); }},
+      {"Mean shift, --preset paper", [](const Mesh& noisy, const Mesh&) { return meanShiftDenoise(noisy, DenoisePreset::Paper); }},
   };
 }
 
@@ -224,10 +257,36 @@ bool loadPair(const fs::path& data, const Pair& p, Case& c) {
   return true;
 }
 
+// The noise along the clean mesh's vertex normals, RMS in the noisy mesh's average edge lengths: what
+// estimateNoise estimates.
+double trueNoiseLevel(const Case& c) {
+  const std::vector<Vec3> n = vertexNormals(c.clean);
+  double sum = 0;
+  int count = 0;
+  for (int v = 0; v < c.clean.vertexCount(); ++v) {
+    if (n[v].squaredNorm() == 0) continue;
+    const double d = (c.noisy.position(v) - c.clean.position(v)).dot(n[v]);
+    sum += d * d;
+    ++count;
+  }
+  return std::sqrt(sum / std::max(1, count)) / averageEdgeLength(c.noisy);
+}
+
+std::string lower(std::string s);
+bool noiseOnly = false, pairsOnly = false;
+std::string methodFilter;
+
 std::vector<Row> evaluate(const Case& c, const std::vector<Method>& table) {
   std::vector<Row> rows;
+  if (noiseOnly) {
+    const NoiseEstimate e = estimateNoise(c.noisy), clean = estimateNoise(c.clean);
+    std::printf("noise | %-45s | %-28s | true %.3f | estimated %.3f | clean mesh %.3f\n", c.mesh.c_str(), c.noise.c_str(),
+                trueNoiseLevel(c), e.level, clean.level);
+    return rows;
+  }
   rows.push_back({"noisy input", 100 * rmsTo(c.noisy.positions(), c.clean), meanNormalAngleError(c.noisy, c.clean), -1, ""});
   for (const Method& m : table) {
+    if (!methodFilter.empty() && lower(m.name).find(methodFilter) == std::string::npos) continue;
     std::cerr << "denoise_eval: " << c.mesh << ", " << c.noise << ": " << m.name << "\n";
     const auto t0 = std::chrono::steady_clock::now();
     Outcome o = m.run(c.noisy, c.clean);
@@ -268,9 +327,13 @@ std::string lower(std::string s) {
 
 int usage(const char* error) {
   if (error) std::cerr << "denoise_eval: " << error << "\n";
-  std::cerr << "usage: denoise_eval [--mesh SUBSTRING] [--quick] [--markdown FILE] [--data DIR]\n"
+  std::cerr << "usage: denoise_eval [--mesh SUBSTRING] [--method SUBSTRING] [--pairs] [--quick] [--noise-estimate] [--markdown FILE] [--data DIR]\n"
                "  --mesh      only meshes whose name contains SUBSTRING (case-insensitive)\n"
                "  --quick     a small subset, as a smoke test\n"
+               "  --pairs     only the ground-truth pairs\n"
+               "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations  the default denoiser's options of those names\n"
+               "  --method    only methods whose name contains SUBSTRING\n"
+               "  --noise-estimate  only the estimated against the true noise level of each case\n"
                "  --markdown  also write the tables to FILE\n"
                "  --data      the shared data folder (default ../shared/data of the repository)\n";
   return error ? 2 : 0;
@@ -292,6 +355,19 @@ int main(int argc, char** argv) {
     try {
       if (a == "--mesh") filter = lower(value());
       else if (a == "--quick") quick = true;
+      else if (a == "--noise-estimate") noiseOnly = true;
+      else if (a == "--method") methodFilter = lower(value());
+      else if (a == "--pairs") pairsOnly = true;
+      else if (a == "--strength") evalStrength = std::stod(value());
+      else if (a == "--max-passes") evalMaxPasses = std::stoi(value());
+      else if (a == "--presmoothing") {
+        std::stringstream list(value());
+        for (std::string item; std::getline(list, item, ',');) evalPresmoothing.push_back(std::stoi(item));
+      } else if (a == "--vertex-iterations") evalVertexIterations = std::stoi(value());
+      else if (a == "--hr") {
+        std::stringstream list(value());
+        for (std::string item; std::getline(list, item, ',');) evalRange.push_back(std::stod(item));
+      }
       else if (a == "--markdown") markdownPath = value();
       else if (a == "--data") data = value();
       else if (a == "-h" || a == "--help") return usage(nullptr);
@@ -316,6 +392,7 @@ int main(int argc, char** argv) {
   std::vector<Summary> summary;
   auto run = [&](const Case& c) {
     const std::vector<Row> rows = evaluate(c, table_);
+    if (noiseOnly) return;
     const std::string t = table(c, rows);
     std::cout << t << std::flush;
     md << t;
@@ -324,7 +401,7 @@ int main(int argc, char** argv) {
 
   try {
     for (const Source& src : cleanSources(data, quick)) {
-      if (!wanted(src.name)) continue;
+      if (!wanted(src.name) || pairsOnly) continue;
       Mesh clean = src.load();
       normalizeToUnitCube(clean);
       for (NoiseDistribution dist : {NoiseDistribution::Fixed, NoiseDistribution::Uniform}) {
@@ -349,10 +426,10 @@ int main(int argc, char** argv) {
 
   if (!summary.empty()) {
     std::ostringstream s;
-    s << "## Summary: RMS ×10² / mean normal error (°)\n\n| case | noisy |";
-    for (const Method& m : table_) s << " " << m.name << " |";
-    s << "\n|---|---|";
-    for (size_t i = 0; i < table_.size(); ++i) s << "---|";
+    s << "## Summary: RMS ×10² / mean normal error (°)\n\n| case |";
+    for (const Row& r : summary.front().rows) s << " " << r.method << " |";
+    s << "\n|---|";
+    for (size_t i = 0; i < summary.front().rows.size(); ++i) s << "---|";
     s << "\n";
     for (const Summary& row : summary) {
       s << "| " << row.label << " |";

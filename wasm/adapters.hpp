@@ -44,4 +44,8 @@ emscripten::val previewWithoutProgress(int handle, const std::string& op, const 
 // ops(): the names of the ops this build knows (the web app asks before offering a preset).
 emscripten::val listOps();
 
+// presets(): the core's filter presets (filterPresets()) as parameter objects of the filter op,
+// with name, description and signal; the web app takes its preset values from here.
+emscripten::val listPresets();
+
 }  // namespace geoshift::wasm

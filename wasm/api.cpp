@@ -8,6 +8,7 @@
 #include "convert.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
+#include "geoshift/presets.hpp"
 #include "ops.hpp"
 
 namespace geoshift::wasm {
@@ -111,6 +112,30 @@ val listOps() {
   val names = val::array();
   for (const OpEntry& e : opTable()) names.call<void>("push", std::string(e.name));
   return names;
+}
+
+val listPresets() {
+  val list = val::array();
+  for (const FilterPreset& p : filterPresets()) {
+    const MeanShiftOptions& o = p.options;
+    val entry = val::object();
+    entry.set("name", p.name);
+    entry.set("description", p.description);
+    entry.set("signal", p.signal);
+    // In the filter op's parameter names and units, so that a preset is a parameter object.
+    entry.set("mode", std::string(o.passes > 1 ? "bms" : "ms"));
+    entry.set("passes", o.passes);
+    entry.set("hs", o.spatialBandwidth);
+    entry.set("hr", o.rangeBandwidth);
+    entry.set("radius", o.radius > 0 ? o.radius : 3 * o.spatialBandwidth);
+    entry.set("eps", o.epsilon);
+    entry.set("kmax", o.maxIterations);
+    entry.set("rangeUpdate", std::string(o.rangeUpdate == RangeUpdate::Sampled ? "sampled" : "joint"));
+    entry.set("levels", p.levels);
+    entry.set("alpha", p.detailGain);
+    list.call<void>("push", entry);
+  }
+  return list;
 }
 
 val run(int handle, const std::string& op, const val& params, const val& onProgress) {

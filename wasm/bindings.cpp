@@ -15,4 +15,5 @@ EMSCRIPTEN_BINDINGS(geoshift) {
   emscripten::function("preview", &geoshift::wasm::preview);
   emscripten::function("preview", &geoshift::wasm::previewWithoutProgress);
   emscripten::function("ops", &geoshift::wasm::listOps);
+  emscripten::function("presets", &geoshift::wasm::listPresets);
 }

@@ -101,9 +101,12 @@ export interface OpParams {
     levels?: number; alpha?: number; filterGeometry?: boolean;
   };
   /**
-   * Denoising of the positions, as `geoshift denoise`. meanshift (default, the paper's 4.1): hs,
-   * radius, eps in AEL, hr of the normal kernel (eq. 8), passes of normal filtering + vertex update;
-   * rangeUpdate defaults to 'sampled' here (the paper's), faceNormals to 'consensus'.
+   * Denoising of the positions, as `geoshift denoise`. meanshift (default), preset 'default': noise
+   * level in AEL (0 = estimated from the mesh), strength (times the noise level), hr between unit
+   * normals (smaller keeps more edges), hs and radius in AEL, passes (0 = chosen by SURE);
+   * stats say what was estimated and chosen (docs/denoising.md). preset 'paper' (the paper's 4.1):
+   * hs, radius, eps in AEL, hr of the normal kernel (eq. 8), kmax, passes, rangeUpdate ('sampled'),
+   * faceNormals ('consensus'), supportIterations. A parameter of the other preset is an error.
    * bilateral: normalIterations, sigmaC (AEL, 0 = automatic), sigmaS, neighbors. taubin:
    * iterations, lambda, mu. A parameter of another method than the chosen one is an error.
    * levels > 0 (meanshift only): denoise a mesh coarsened that many wavelet levels and add the
@@ -111,6 +114,7 @@ export interface OpParams {
    */
   denoise: {
     method?: 'meanshift' | 'bilateral' | 'taubin';
+    preset?: 'default' | 'paper'; noise?: number; strength?: number;
     hs?: number; hr?: number; radius?: number; kmax?: number; eps?: number; passes?: number;
     rangeUpdate?: 'joint' | 'sampled'; faceNormals?: 'consensus' | 'mean'; threads?: number;
     supportIterations?: number; vertexIterations?: number;
@@ -189,6 +193,27 @@ export interface GeoshiftModule {
   preview<Op extends OpName>(handle: number, op: Op, params: OpParams[Op], maxVertices: number, onProgress?: ProgressCallback): RunResult;
   /** Names of the ops this build knows. */
   ops(): string[];
+  /** The core's filter presets (the CLI's --preset), as parameters of the filter op. */
+  presets(): FilterPreset[];
+}
+
+/** A filter preset of the core (core/src/presets.cpp): the filter op's parameters and what it is. */
+export interface FilterPreset {
+  name: string;
+  description: string;
+  /** The signal it is meant for: color, normal, curvature, terrain. */
+  signal: string;
+  mode: 'ms' | 'bms';
+  passes: number;
+  hs: number;
+  hr: number;
+  /** In AEL; the core's default 3 hs written out. */
+  radius: number;
+  eps: number;
+  kmax: number;
+  rangeUpdate: 'joint' | 'sampled';
+  levels: number;
+  alpha: number;
 }
 
 /** Emscripten module options the app may need; all optional. */

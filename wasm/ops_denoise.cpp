@@ -1,5 +1,6 @@
 // op "denoise": vertex positions denoised as `geoshift denoise` does it (cli/denoise.cpp): method
-// "meanshift" (the paper's 4.1, the default), "bilateral" (Zheng et al.) or "taubin" (a baseline).
+// "meanshift" (the default; preset "default" or "paper", docs/denoising.md), "bilateral" (Zheng et
+// al.) or "taubin" (a baseline).
 #include <string>
 #include <vector>
 
@@ -22,7 +23,8 @@ struct MethodParams {
 
 const std::vector<MethodParams>& methodParams() {
   static const std::vector<MethodParams> table = {
-      {"meanshift", {"hs", "hr", "radius", "kmax", "eps", "passes", "rangeUpdate", "faceNormals", "threads", "supportIterations"}},
+      {"meanshift", {"preset", "noise", "strength", "hs", "hr", "radius", "kmax", "eps", "passes", "rangeUpdate",
+                     "faceNormals", "threads", "supportIterations"}},
       {"bilateral", {"normalIterations", "sigmaC", "sigmaS", "neighbors"}},
       {"taubin", {"iterations", "lambda", "mu"}},
   };
@@ -39,6 +41,15 @@ void rejectOtherMethodsParams(const Params& p, const std::string& method) {
   }
   if (method == "taubin" && p.has("vertexIterations"))
     throw InputError("denoise: parameter vertexIterations does not apply to method \"taubin\"");
+}
+
+// Parameters of one mean shift preset only, refused with the other (as the CLI does).
+void rejectOtherPresetsParams(const Params& p, const std::string& preset) {
+  const std::vector<const char*> defaultOnly = {"noise", "strength"};
+  const std::vector<const char*> paperOnly = {"kmax", "eps", "rangeUpdate", "faceNormals", "supportIterations"};
+  for (const char* name : preset == "paper" ? defaultOnly : paperOnly)
+    if (p.has(name))
+      throw InputError(std::string("denoise: parameter ") + name + " does not apply to preset \"" + preset + "\"");
 }
 
 }  // namespace
@@ -61,30 +72,58 @@ OpOutput runDenoise(const OpContext& context) {
     DenoiseOptions o;
     o.levels = levels;
     o.alpha = {alpha};
-    MeanShiftOptions& ms = o.meanShift;
-    o.passes = p.integer("passes", o.passes, 1, 10000);
-    ms.spatialBandwidth = p.number("hs", ms.spatialBandwidth, 1e-6, 1e6);
-    ms.rangeBandwidth = p.number("hr", ms.rangeBandwidth, 1e-12, 1e12);
-    ms.radius = p.number("radius", ms.radius, 0, 1e6);
-    ms.maxIterations = p.integer("kmax", ms.maxIterations, 1, 1000000);
-    ms.epsilon = p.number("eps", ms.epsilon, 1e-9, 1e6);
-    // Defaults are the core's (the paper's sampled update, the consensus face rule), as in the CLI.
-    if (p.has("rangeUpdate"))
-      ms.rangeUpdate = p.choice("rangeUpdate", "sampled", {"joint", "sampled"}) == "sampled" ? RangeUpdate::Sampled
-                                                                                             : RangeUpdate::Joint;
-    if (p.has("faceNormals"))
-      o.faceNormals = p.choice("faceNormals", "consensus", {"consensus", "mean"}) == "mean" ? FaceNormalRule::Mean
-                                                                                           : FaceNormalRule::Consensus;
-    ms.parallel.threads = context.threads(p.integer("threads", 0, 0, 1024));
-    o.support.iterations = p.integer("supportIterations", o.support.iterations, 0, 1000000);
-    o.vertexUpdate.iterations = p.integer("vertexIterations", o.vertexUpdate.iterations, 0, 1000000);
-    const DenoiseResult r = denoise(mesh, o, context.progress);
-    out.stats.set("passes", o.passes);
-    out.stats.set("meanIterations", r.meanIterations);
-    out.stats.set("convergedFraction", r.convergedFraction);
-    out.stats.set("limitedSteps", r.limitedSteps);
-    out.stats.set("threads", r.threads);
-    out.stats.set("ms", r.seconds * 1000);
+    const std::string preset = p.choice("preset", "default", {"default", "paper"});
+    rejectOtherPresetsParams(p, preset);
+    const int threads = context.threads(p.integer("threads", 0, 0, 1024));
+    out.stats.set("preset", preset);
+    if (preset == "paper") {
+      o.preset = DenoisePreset::Paper;
+      PaperDenoiseOptions& paper = o.paper;
+      MeanShiftOptions& ms = paper.meanShift;
+      paper.passes = p.integer("passes", paper.passes, 1, 10000);
+      ms.spatialBandwidth = p.number("hs", ms.spatialBandwidth, 1e-6, 1e6);
+      ms.rangeBandwidth = p.number("hr", ms.rangeBandwidth, 1e-12, 1e12);
+      ms.radius = p.number("radius", ms.radius, 0, 1e6);
+      ms.maxIterations = p.integer("kmax", ms.maxIterations, 1, 1000000);
+      ms.epsilon = p.number("eps", ms.epsilon, 1e-9, 1e6);
+      // Defaults are the core's (the paper's sampled update, the consensus face rule), as in the CLI.
+      if (p.has("rangeUpdate"))
+        ms.rangeUpdate = p.choice("rangeUpdate", "sampled", {"joint", "sampled"}) == "sampled" ? RangeUpdate::Sampled
+                                                                                               : RangeUpdate::Joint;
+      if (p.has("faceNormals"))
+        paper.faceNormals = p.choice("faceNormals", "consensus", {"consensus", "mean"}) == "mean"
+                                ? FaceNormalRule::Mean
+                                : FaceNormalRule::Consensus;
+      ms.parallel.threads = threads;
+      paper.support.iterations = p.integer("supportIterations", paper.support.iterations, 0, 1000000);
+      paper.vertexUpdate.iterations = p.integer("vertexIterations", paper.vertexUpdate.iterations, 0, 1000000);
+      const DenoiseResult r = denoise(mesh, o, context.progress);
+      out.stats.set("passes", paper.passes);
+      out.stats.set("meanIterations", r.meanIterations);
+      out.stats.set("convergedFraction", r.convergedFraction);
+      out.stats.set("limitedSteps", r.limitedSteps);
+      out.stats.set("threads", r.threads);
+      out.stats.set("ms", r.seconds * 1000);
+    } else {
+      o.noiseLevel = p.number("noise", 0, 0, 1e6);
+      o.strength = p.number("strength", 1, 1e-6, 1e6);
+      if (p.has("hr")) o.rangeBandwidths = {p.number("hr", o.rangeBandwidths.front(), 1e-6, 1e6)};
+      o.neighborhood.spatialBandwidth = p.number("hs", o.neighborhood.spatialBandwidth, 1e-6, 1e6);
+      o.neighborhood.radius = p.number("radius", o.neighborhood.radius, 1e-6, 1e6);
+      o.fixedPasses = p.integer("passes", 0, 0, 10000);  // 0: chosen by SURE
+      o.vertexIterations = p.integer("vertexIterations", o.vertexIterations, 1, 1000000);
+      o.threads = threads;
+      const DenoiseResult r = denoise(mesh, o, context.progress);
+      out.stats.set("noiseLevel", r.noiseLevel);
+      out.stats.set("noiseEstimated", r.noiseEstimated ? "yes" : "no");
+      out.stats.set("presmoothingSteps", r.presmoothingSteps);
+      out.stats.set("passes", r.passes);
+      out.stats.set("passesRun", r.passesRun);
+      out.stats.set("estimatedError", r.estimatedError);
+      out.stats.set("limitedSteps", r.limitedSteps);
+      out.stats.set("threads", r.threads);
+      out.stats.set("ms", r.seconds * 1000);
+    }
   } else if (method == "bilateral") {
     BilateralNormalOptions o;
     o.normalIterations = p.integer("normalIterations", o.normalIterations, 0, 1000000);

@@ -1,14 +1,11 @@
 // op "filter": Riemannian mean shift (mode "ms") or blurring mean shift ("bms") of a vertex signal,
-// directly or on a wavelet-coarsened mesh (levels > 0, Algorithm 2), as `geoshift filter` does it (cli/filter.cpp, cli/filter_signal.cpp): the same signals, the same
-// default range bandwidths and the same write-back, so both give the same numbers.
-#include <algorithm>
-#include <cctype>
-#include <sstream>
+// directly or on a wavelet-coarsened mesh (levels > 0, Algorithm 2). What the request means is the
+// core's (filter_request.hpp), as for `geoshift filter`, so both give the same numbers.
+#include <optional>
 
 #include "geoshift/curvature.hpp"
 #include "geoshift/error.hpp"
-#include "geoshift/presets.hpp"
-#include "geoshift/geometry.hpp"
+#include "geoshift/filter_request.hpp"
 #include "geoshift/hybrid.hpp"
 #include "ops.hpp"
 
@@ -16,49 +13,22 @@ namespace geoshift::wasm {
 
 namespace {
 
-bool sameIgnoringCase(const std::string& a, const std::string& b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
-         });
-}
-
-// A signal of the session by name: as the CLI finds glTF attributes (the name or "_" + name), and
-// then ignoring case, because three.js lower-cases the custom attributes it reads from glTF.
-const Attribute* findSignal(const Session& s, const std::string& name) {
-  for (const std::string& candidate : {name, "_" + name})
-    if (const Attribute* a = s.attributes.find(candidate)) return a;
+// The session's colors and one-number signals, as the core's filter request reads them.
+SignalInputs inputsOf(const Session& s) {
+  SignalInputs in;
+  in.where = "filter: the mesh";
+  if (const Attribute* color = s.attributes.find("color")) in.colors = [color] { return color->values; };
   for (const Attribute& a : s.attributes.all())
-    if (sameIgnoringCase(a.name, name) || sameIgnoringCase(a.name, "_" + name)) return &a;
-  return nullptr;
+    if (a.name != "color" && a.name != "normal") in.attributeNames.push_back(a.name);
+  in.attribute = [&s](const std::string& name) {
+    const Attribute& a = s.attributes.get(name);
+    if (a.dim != 1)
+      throw InputError("filter: attribute '" + a.name + "' has " + std::to_string(a.dim) +
+                       " numbers per vertex; this op filters one-number attributes (and color, normal)");
+    return Attribute{a.name, 1, AttributeKind::Euclidean, a.values};
+  };
+  return in;
 }
-
-std::string signalList(const Session& s) {
-  std::string known;
-  for (const Attribute& a : s.attributes.all())
-    if (a.name != "color" && a.name != "normal") known += (known.empty() ? "" : ", ") + a.name;
-  return known.empty() ? "none" : known;
-}
-
-// "terrain" stands for the height attribute the terrain command writes and the class, as in the CLI.
-std::vector<std::string> expandTerrain(const Session& s, std::vector<std::string> names) {
-  if (names.size() != 1 || names[0] != "terrain") return names;
-  names.clear();
-  for (const char* candidate : {"_HEIGHT_ABOVE_GROUND", "_VEGETATION_HEIGHT"})
-    if (findSignal(s, candidate)) {
-      names.push_back(candidate);
-      break;
-    }
-  if (findSignal(s, "_CLASS")) names.push_back("_CLASS");
-  if (names.empty())
-    throw InputError("filter: the mesh has no terrain attribute (_HEIGHT_ABOVE_GROUND, _VEGETATION_HEIGHT or _CLASS); "
-                     "set one with setAttribute, or name the attribute in signal");
-  return names;
-}
-
-struct Source {
-  enum Kind { Color, Normal, Curvature, Named } kind;
-  std::string name;  // in the filtered set and in the output
-};
 
 }  // namespace
 
@@ -75,12 +45,14 @@ OpOutput runFilter(const OpContext& context) {
   hybrid.filterGeometry = p.flag("filterGeometry", false);
 
   MeanShiftOptions o;
-  // Without a mode, passes alone decides (the CLI's behaviour when --mode is left out).
   const std::string mode = p.has("mode") ? p.choice("mode", "ms", {"ms", "bms"}) : "";
-  const bool passesGiven = p.has("passes");
-  o.passes = p.integer("passes", 1, 1, 10000);
-  if (mode == "bms" && !passesGiven) o.passes = 10;
-  if (mode == "ms" && o.passes != 1) throw InputError("filter: mode \"ms\" runs one pass; use mode \"bms\" for passes > 1");
+  const std::optional<int> passes =
+      p.has("passes") ? std::optional<int>(p.integer("passes", 1, 1, 10000)) : std::nullopt;
+  try {
+    o.passes = filterPasses(mode, passes);
+  } catch (const InputError& e) {
+    throw InputError(std::string("filter: ") + e.what());
+  }
   o.spatialBandwidth = p.number("hs", o.spatialBandwidth, 1e-6, 1e6);
   o.radius = p.number("radius", o.radius, 0, 1e6);
   o.epsilon = p.number("eps", o.epsilon, 1e-9, 1e6);
@@ -89,81 +61,38 @@ OpOutput runFilter(const OpContext& context) {
                                                                                         : RangeUpdate::Joint;
   o.segments = p.flag("segments", false);
   o.parallel.threads = context.threads(p.integer("threads", 0, 0, 1024));
-  const bool rangeGiven = p.has("hr");
-  const double hr = p.number("hr", 0.1, 1e-12, 1e12);
+  const std::optional<double> hr = p.has("hr") ? std::optional(p.number("hr", 0.1, 1e-12, 1e12)) : std::nullopt;
 
-  std::vector<std::string> names = expandTerrain(s, splitSignalNames(p.text("signal", "color")));
-  if (names.empty()) throw InputError("filter: parameter signal names no attribute");
-
-  AttributeSet set(mesh.vertexCount());
-  std::vector<Source> sources;
-  for (const std::string& name : names) {
-    double defaultHr = 0;
-    RangeKernel kernel = RangeKernel::Gaussian;
-    if (name == "color") {
-      const Attribute* color = s.attributes.find("color");
-      if (!color) throw InputError("filter: the mesh has no vertex colors; load it with colors, or choose signal normal, curvature or an attribute");
-      set.set("COLOR", 3, AttributeKind::Euclidean, color->values);
-      sources.push_back({Source::Color, "COLOR"});
-      defaultHr = 0.1;
-    } else if (name == "normal") {
-      // From the geometry, as the CLI does (a file's own normals may be split at hard edges).
-      std::vector<double> flat;
-      flat.reserve(3 * mesh.vertexCount());
-      for (const Vec3& v : vertexNormals(mesh)) flat.insert(flat.end(), {v.x(), v.y(), v.z()});
-      set.set("NORMAL", 3, AttributeKind::UnitVector, std::move(flat));
-      sources.push_back({Source::Normal, "NORMAL"});
-      kernel = RangeKernel::NormalSimilarity;
-      defaultHr = 0.45;
-    } else if (name == "curvature") {
-      context.progress.step(0, "curvature");
-      std::vector<double> k = curvatures(mesh).get(CurvatureKind::Absolute);
-      defaultHr = spreadBandwidth(k, 1);
-      set.set("_CURVATURE", 1, AttributeKind::Euclidean, std::move(k));
-      sources.push_back({Source::Curvature, "_CURVATURE"});
-    } else {
-      const Attribute* a = findSignal(s, name);
-      if (!a)
-        throw InputError("filter: the mesh has no attribute '" + name + "' (it has: " + signalList(s) +
-                         "; or use color, normal, curvature)");
-      if (a->dim != 1)
-        throw InputError("filter: attribute '" + a->name + "' has " + std::to_string(a->dim) +
-                         " numbers per vertex; this op filters one-number attributes (and color, normal)");
-      if (set.contains(a->name)) throw InputError("filter: attribute '" + a->name + "' is named twice in signal");
-      defaultHr = spreadBandwidth(a->values, 1);
-      set.set(a->name, 1, AttributeKind::Euclidean, a->values);
-      sources.push_back({Source::Named, a->name});
-    }
-    o.channels.push_back({sources.back().name, rangeGiven ? hr : defaultHr, kernel});
-  }
-
-  HybridResult r = hybridMeanShift(mesh, set, o, hybrid, context.progress);
+  const FilterSignal signal = filterSignal(mesh, p.text("signal", "color"), inputsOf(s), hr, context.progress);
+  o.channels = signal.channels;
+  HybridResult r = hybridMeanShift(mesh, signal.values, o, hybrid, context.progress);
 
   OpOutput out;
   if (hybrid.filterGeometry) out.positions = std::move(r.positions);
-  for (const Source& source : sources) {
-    std::vector<double> values = r.signal.get(source.name).values;
-    switch (source.kind) {
-      case Source::Color:
+  for (size_t c = 0; c < signal.channels.size(); ++c) {
+    const std::string& name = signal.channels[c].attribute;
+    std::vector<double> values = r.signal.get(name).values;
+    switch (signal.sources[c]) {
+      case SignalSource::Color:
         out.colors = std::move(values);
         out.colorsAreSignal = true;
         break;
-      case Source::Normal:
+      case SignalSource::Normal:
         out.normals = std::move(values);
         break;
-      case Source::Curvature: {
+      case SignalSource::Curvature: {
         // The CLI maps colors over the caller's vertices (its percentiles count every welded copy).
         const std::vector<int>& vertexOf = s.build.vertexOf;
         const std::vector<double> rgb = colorMap(toCallerLayout(values, 1, vertexOf));
         std::vector<double> meshRgb(3 * values.size(), 0.0);
         for (std::size_t i = 0; i < vertexOf.size(); ++i)
-          for (int c = 0; c < 3; ++c) meshRgb[3 * vertexOf[i] + c] = rgb[3 * i + c];
+          for (int k = 0; k < 3; ++k) meshRgb[3 * vertexOf[i] + k] = rgb[3 * i + k];
         if (!out.colorsAreSignal) out.colors = std::move(meshRgb);
-        out.scalars.emplace_back(source.name, std::move(values));
+        out.scalars.emplace_back(name, std::move(values));
         break;
       }
-      case Source::Named:
-        out.scalars.emplace_back(source.name, std::move(values));
+      case SignalSource::Attribute:
+        out.scalars.emplace_back(name, std::move(values));
         break;
     }
   }

@@ -3,11 +3,12 @@
 // worker of a cross-origin-isolated page), as a table of median times and the wasm/native speed
 // ratio (issue 7: wasm on one thread should reach 0.6x native).
 //
-//   node bench/wasm/denoise.mjs [--vertices N] [--repetitions R]
+//   node bench/wasm/denoise.mjs [--vertices N] [--repetitions R] [--preset default|paper]
 //
 // GEOSHIFT_NATIVE_CLI and GEOSHIFT_WASM_DIR pick other builds (defaults: build/native-release,
 // build/wasm-release). The job: a torus of about N vertices (default 10k) with noise of 0.3 average
-// edge lengths in random directions, denoised with the paper's settings (the op's defaults).
+// edge lengths in random directions, denoised with the op's defaults (or --preset paper). Natively
+// it also prints the peak memory per vertex (docs/denoising.md#speed-and-memory has the targets).
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import http from 'node:http';
@@ -22,6 +23,10 @@ const option = (name, fallback) => {
   return i >= 0 ? Number(argv[i + 1]) : fallback;
 };
 const targetVertices = option('--vertices', 10000);
+// --preset paper: the paper's pipeline (the default denoiser before docs/denoising.md's rebuild).
+const presetIndex = argv.indexOf('--preset');
+const preset = presetIndex >= 0 ? argv[presetIndex + 1] : 'default';
+if (!['default', 'paper'].includes(preset)) throw new Error(`--preset must be default or paper (got ${preset})`);
 const repetitions = option('--repetitions', 3);
 const CHROMIUM = '/usr/bin/chromium';
 
@@ -69,8 +74,11 @@ async function main() {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-bench-'));
   const off = path.join(dir, 'torus.off');
   writeOff(off, mesh);
-  console.log(`job: denoise (meanshift, the paper's settings: 3 passes, h_s 3, r 4, h_r 0.45, k_max 50, 20 vertex steps) ` +
-    `of a noisy torus, ${vertexCount} vertices; median of ${repetitions} runs; ${os.cpus().length} cores`);
+  const job = preset === 'paper'
+    ? "the paper preset: 3 passes, h_s 3, r 4, h_r 0.45, k_max 50, 20 vertex steps"
+    : 'the default: noise estimated, face-normal mean shift, smoothing chosen by SURE';
+  console.log(`job: denoise (${job}) of a noisy torus, ${vertexCount} vertices; median of ${repetitions} runs; ` +
+    `${os.cpus().length} cores`);
   const rows = [];
 
   // Native: the CLI's own timing of the filter (file reading and writing excluded).
@@ -81,13 +89,22 @@ async function main() {
     }
     const times = [];
     for (let k = 0; k < repetitions; ++k) {
-      const r = spawnSync(nativeCli, ['denoise', off, '-o', path.join(dir, 'native.glb'), '--threads', String(threads)], { encoding: 'utf8' });
+      const r = spawnSync(nativeCli, ['denoise', off, '-o', path.join(dir, 'native.glb'), '--preset', preset,
+        '--threads', String(threads)], { encoding: 'utf8' });
       if (r.status !== 0) throw new Error(`native denoise failed: ${r.stderr}`);
       const ms = /filter (\d+) ms/.exec(r.stderr);
       if (!ms) throw new Error(`no timing in the CLI's output: ${r.stderr}`);
       times.push(Number(ms[1]));
     }
     rows.push({ what: `native CLI, ${threads ? '1 thread' : `all cores (${os.cpus().length})`}`, ms: median(times), native: threads === 1 });
+  }
+  // Peak memory of the whole native process (reading and writing included), when GNU time is there.
+  if (fs.existsSync(nativeCli) && fs.existsSync('/usr/bin/time')) {
+    const r = spawnSync('/usr/bin/time', ['-f', 'peak %M KB', nativeCli, 'denoise', off, '-o', path.join(dir, 'native.glb'),
+      '--preset', preset], { encoding: 'utf8' });
+    const kb = /peak (\d+) KB/.exec(r.stderr);
+    if (kb) console.log(`native peak memory: ${(Number(kb[1]) / 1024).toFixed(0)} MB, ` +
+      `${((Number(kb[1]) * 1024) / vertexCount).toFixed(0)} bytes per vertex`);
   }
 
   // Node wasm, single-threaded flavour: time inside run(), the copy of the result included.
@@ -96,7 +113,7 @@ async function main() {
     const times = [];
     for (let k = 0; k < repetitions; ++k) {
       const { handle } = geoshift.loadMesh(mesh.positions, mesh.indices);
-      const r = geoshift.run(handle, 'denoise', {});
+      const r = geoshift.run(handle, 'denoise', { preset });
       geoshift.freeMesh(handle);
       if (!r.ok) throw new Error(r.error);
       times.push(r.stats.timeMs);
@@ -153,7 +170,7 @@ async function chromiumRow(mesh) {
         let threads = 0;
         for (let k = 0; k < data.repetitions; ++k) {
           const { handle } = m.loadMesh(positions, indices);
-          const r = m.run(handle, 'denoise', {});
+          const r = m.run(handle, 'denoise', { preset: ${JSON.stringify(preset)} });
           m.freeMesh(handle);
           if (!r.ok) throw new Error(r.error);
           times.push(r.stats.timeMs);

@@ -1,4 +1,4 @@
-// Exp map by straightest geodesics (Polthier–Schmies 1998; ALGORITHMS.md §2) and the conversion of
+// Exp map by straightest geodesics (Polthier–Schmies 1998; docs/algorithms.md#exp-map) and the conversion of
 // 3D directions into the tangent frames of geodesic.hpp.
 //
 // The trace keeps its position as barycentric coordinates of the current face and what is left
@@ -20,11 +20,11 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kTwoPi = 2 * std::numbers::pi;
-// A crossing whose edge parameter is this close to an end goes through the vertex (§2 "Vertex
-// hits"): snapping there lets the path leave with θ(v)/2 on either side instead of being nudged
+// A crossing whose edge parameter is this close to an end goes through the vertex
+// (docs/algorithms.md#exp-map): snapping there lets the path leave with θ(v)/2 on either side instead of being nudged
 // into whichever face round-off picks.
 constexpr double kVertexHit = 1e-9;
-// Least component of the unit direction into a face just entered (§2 pitfalls). A grazing
+// Least component of the unit direction into a face just entered (docs/algorithms.md#exp-map). A grazing
 // direction, along the entry edge or by round-off pointing back out, would otherwise run along
 // that edge, or outside the face with the opposite corner's coordinate going negative.
 constexpr double kMinInward = 1e-9;

@@ -1,4 +1,4 @@
-// Log map by discrete geodesic polar coordinates (Melvær–Reimers 2012; ALGORITHMS.md §1).
+// Log map by discrete geodesic polar coordinates (Melvær–Reimers 2012; docs/algorithms.md#log-map).
 //
 // A Dijkstra-like front: each popped vertex c updates the two other corners of every face around
 // it by unfolding the face onto the plane together with a virtual source σ placed at distances
@@ -213,7 +213,7 @@ struct LogMap::State {
   }
 
   // Updates i from the edge (j, kk) of the counter-clockwise face (j, kk, i), unfolded as e
-  // (§1 triangle update).
+  // (docs/algorithms.md#log-map).
   [[gnu::always_inline]] void update(int j, int kk, int i, const Unfolded& e) {
     const double Uj = value[j].U, Uk = value[kk].U, Ui = value[i].U;
     // U = 0 would divide in the angle at σ (and the ring of a vertex source is exact already).
@@ -237,7 +237,7 @@ struct LogMap::State {
         sy = -std::sqrt(sy2);
         wy = e.ay - sy;
         // σ→x_i must cross the edge between x_j (left of the ray) and x_k (right of it); otherwise
-        // the straight path leaves the face pair and the unfolding underestimates (§1, [V]).
+        // the straight path leaves the face pair and the unfolding underestimates (docs/algorithms.md#log-map).
         through = wy * sx - wx * sy >= 0 && -wx * sy - wy * (e.d - sx) <= 0;
         if (through) u = std::sqrt(wx * wx + wy * wy);
       }
@@ -292,7 +292,7 @@ struct LogMap::State {
       const double u = top.u;
       const int c = top.vertex;  // a plain variable: Clang 14 cannot capture a structured binding
       if (u != value[c].U) continue;  // superseded by a later, smaller push
-      // Push only if u < R (§1): a vertex of the ring just outside does not propagate outwards. It
+      // Push only if u < R (docs/algorithms.md#log-map): a vertex of the ring just outside does not propagate outwards. It
       // still closes the faces it shares with an inner vertex, though: a vertex inside R next to
       // the rim is often reached straight only through an edge (inner, outer) whose outer end got
       // its value after the inner end had popped, and would otherwise keep a fallback value.
@@ -377,7 +377,7 @@ const std::vector<LogMapEntry>& LogMap::computeFromVertex(int v, double radius) 
   s.touched.push_back(s.inner[v]);
   s.value[s.inner[v]] = {0.0, 0.0};
   if (mesh.isIsolated(v)) return s.collect(v);  // no face: only itself
-  // The one-ring at edge length and the cone-normalised polar angle of its edge (§1 vertex source).
+  // The one-ring at edge length and the cone-normalised polar angle of its edge (docs/algorithms.md#log-map).
   int last = -1;
   mesh.forEachOutgoing(v, [&](int h) {
     s.seed(mesh.head(h), geometry_.length(h), geometry_.polarAngle(h));

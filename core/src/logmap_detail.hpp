@@ -1,6 +1,6 @@
 #pragma once
 // Private to logmap.cpp: the per-vertex ring records and the arithmetic of one DGPC triangle update
-// (ALGORITHMS.md §1), kept apart so that logmap.cpp holds the solver itself.
+// (docs/algorithms.md#log-map), kept apart so that logmap.cpp holds the solver itself.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,10 +14,10 @@ namespace geoshift::logmap_detail {
 constexpr double kPi = std::numbers::pi;
 constexpr double kTwoPi = 2 * std::numbers::pi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kEps = 1e-12;       // relative improvement a new U needs to be accepted (§1 State)
-constexpr double kTinyEdge = 1e-11;  // shorter edges cannot place σ (§1 fallbacks: d < 1e-11)
+constexpr double kEps = 1e-12;       // relative improvement a new U needs to be accepted (docs/algorithms.md#log-map)
+constexpr double kTinyEdge = 1e-11;  // shorter edges cannot place σ (docs/algorithms.md#log-map: the fallbacks)
 // A face point closer than this (barycentric) to an edge also seeds the twin face's apex: seen from
-// a point on the edge its ends are π apart, where the angle wrap rule cannot pick a side (§1).
+// a point on the edge its ends are π apart, where the angle wrap rule cannot pick a side (docs/algorithms.md#log-map).
 constexpr double kEdgeBary = 1e-6;
 
 // One face of the mesh, as the seeding across an edge of the source face reads it.
@@ -78,7 +78,7 @@ inline Unfolded unfold(const FaceRecord& r, int k) {
 
 // 16 × area² of a triangle with sides x, y, z by the stable Heron product (Kahan): sort a ≥ b ≥ c,
 // then (a+(b+c))(c−(a−b))(c+(a−b))(a+(b−c)); negative when the sides violate the triangle
-// inequality, which is the first fallback of §1.
+// inequality, which is the first fallback (docs/algorithms.md#log-map).
 inline double heron16(double x, double y, double z) {
   const double a = std::max(std::max(x, y), z);
   const double c = std::min(std::min(x, y), z);

@@ -1,4 +1,4 @@
-// Riemannian mean shift (ALGORITHMS.md §0, §8): the per-vertex climb and the passes around it.
+// Riemannian mean shift (docs/algorithms.md#mean-shift): the per-vertex climb and the passes around it.
 #include "geoshift/mean_shift.hpp"
 
 #include <algorithm>
@@ -9,7 +9,7 @@
 
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
-#include "mean_shift_detail.hpp"
+#include "mean_shift_climb.hpp"
 
 namespace geoshift {
 
@@ -57,7 +57,7 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
   require(positive(o.epsilon), "epsilon must be positive (got " + number(o.epsilon) + ")");
   require(o.maxIterations >= 1, "k_max must be at least 1 (got " + std::to_string(o.maxIterations) + ")");
   require(o.passes >= 1, "passes must be at least 1 (got " + std::to_string(o.passes) + ")");
-  require(std::isfinite(o.recentre) && o.recentre >= 0, "recentre must be a fraction >= 0 (got " + number(o.recentre) + ")");
+  require(std::isfinite(o.tuning.recentre) && o.tuning.recentre >= 0, "recentre must be a fraction >= 0 (got " + number(o.tuning.recentre) + ")");
 
   std::vector<SignalChannel> wanted = o.channels;
   if (wanted.empty())
@@ -88,7 +88,7 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
   double weightSum = 0;
   for (double w : s.sampleWeight) weightSum += w;
   s.weightScale = weightSum > 0 ? mesh.vertexCount() / weightSum : 1.0;
-  s.singlePrecision = o.singlePrecisionKernel;
+  s.singlePrecision = o.tuning.singlePrecisionKernel;
   for (int h = 0; h < 3 * mesh.faceCount(); ++h) s.longestEdge = std::max(s.longestEdge, g.length(h));
   const double ael = g.averageEdgeLength();
   require(ael > 0, "the mesh has no edge of positive length");
@@ -97,15 +97,15 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
   s.eps = o.epsilon * ael;
   s.invTwoHs2 = 0.5 / (s.hs * s.hs);
   s.r2 = s.r * s.r;
-  s.exact = o.exactCharts;
-  s.drift = s.exact ? 0 : o.recentre * s.r;
+  s.exact = o.tuning.exactCharts;
+  s.drift = s.exact ? 0 : o.tuning.recentre * s.r;
   s.chartRadius = s.r + s.drift;
-  require(std::isfinite(o.chartCell) && o.chartCell >= 0, "chartCell must be >= 0 (got " + number(o.chartCell) + ")");
-  require(std::isfinite(o.chartDistortion) && o.chartDistortion >= 0,
-          "chartDistortion must be >= 0 (got " + number(o.chartDistortion) + ")");
-  if (!s.exact && o.chartCell > 0) {
-    s.cell = o.chartCell * s.hs;
-    s.distortion = o.chartDistortion;
+  require(std::isfinite(o.tuning.chartCell) && o.tuning.chartCell >= 0, "chartCell must be >= 0 (got " + number(o.tuning.chartCell) + ")");
+  require(std::isfinite(o.tuning.chartDistortion) && o.tuning.chartDistortion >= 0,
+          "chartDistortion must be >= 0 (got " + number(o.tuning.chartDistortion) + ")");
+  if (!s.exact && o.tuning.chartCell > 0) {
+    s.cell = o.tuning.chartCell * s.hs;
+    s.distortion = o.tuning.chartDistortion;
   }
   s.kmax = o.maxIterations;
   s.joint = o.rangeUpdate == RangeUpdate::Joint;
@@ -152,75 +152,50 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
   std::vector<Climber> climbers;
   climbers.reserve(result.threads);
   climbers.emplace_back(s, std::move(first));
-  for (int w = 1; w < result.threads; ++w) climbers.emplace_back(s, climbers.front().logMap.fork());
+  for (int w = 1; w < result.threads; ++w) climbers.emplace_back(s, climbers.front().charts.logMap.fork());
 
   const Groups groups = groupVertices(s);
-  for (Climber& c : climbers) c.setGroups(&groups);
+  for (Climber& c : climbers) c.charts.setGroups(&groups);
   const int groupCount = static_cast<int>(groups.anchor.size());
-  if (s.cell > 0) result.startCharts = groupCount;
+  if (s.cell > 0) result.diagnostics.startCharts = groupCount;
   ParallelOptions parallel = options.parallel;
   if (s.cell > 0) parallel.chunk = 1;  // a group holds up to ~200 vertices: one per hand-out keeps progress prompt
   std::vector<double> current = pack(s, n), next(current.size());
   // Blurring passes climb from the same vertices over the same domain: keep the start charts.
-  bool cacheCharts = s.cell > 0 && options.passes > 1 && options.chartCacheBytes > 0;
-  std::vector<Chart> cache(cacheCharts ? groupCount : 0);
-  std::vector<std::atomic<bool>> ready(cache.size());  // cache[g] is filled (read by other workers)
-  // And the charts of the vertices that start outside their group's chart (a detour makes them
-  // farther from its anchor than the cube's diagonal, as up a wall of a terrain): per group, its
-  // members' in its order, or none for a member that starts in the group's chart.
-  std::vector<std::vector<Chart>> own(cacheCharts ? groupCount : 0);
-  std::atomic<long long> cached{0}, stored{0};  // bytes of the charts kept here and in the store
-  std::atomic<bool> cacheFull{false};
-  ChartStore store(n, groupCount, stored, options.chartCacheBytes / 4, options.passes > 1);
-  if (!s.exact && options.chartCacheBytes > 0)
-    for (Climber& c : climbers) c.setStore(&store);
+  KeptCharts kept(groups, s.cell > 0 && options.passes > 1 && options.tuning.chartCacheBytes > 0,
+                  options.tuning.chartCacheBytes);
+  std::atomic<long long> stored{0};  // bytes of the charts kept in the store
+  ChartStore store(n, groupCount, stored, options.tuning.chartCacheBytes / 4, options.passes > 1);
+  if (!s.exact && options.tuning.chartCacheBytes > 0)
+    for (Climber& c : climbers) c.charts.setStore(&store);
   std::vector<int> passIterations(n);
   long long total = 0;
   for (int pass = 0; pass < options.passes; ++pass) {
     const std::string stage =
         options.passes == 1 ? "mean shift" : "blurring pass " + std::to_string(pass + 1) + "/" + std::to_string(options.passes);
     for (Climber& c : climbers) {
-      c.beginPass();
-      c.setGroupCharts(cacheCharts ? &cache : nullptr, &ready);
+      c.charts.beginPass();
+      kept.lend(c.charts);
     }
     parallelFor(groupCount, parallel, progress, stage, double(pass) / options.passes,
                 double(pass + 1) / options.passes, [&](int g, int worker) {
                   Climber& climber = climbers[worker];
-                  if (cacheCharts) {
-                    // Filled in the first pass; a chart is the same whichever worker computes it.
-                    if (pass == 0) {
-                      cache[g] = climber.anchorChart(groups.anchor[g], groups.reach[g]);
-                      climber.useAnchor(cache[g]);
-                      own[g].resize(groups.start[g + 1] - groups.start[g]);
-                      long long bytes = ChartStore::bytesOf(cache[g]);
-                      for (int k = groups.start[g]; k < groups.start[g + 1]; ++k)
-                        if (!climber.startsInAnchor(groups.vertex[k])) {
-                          own[g][k - groups.start[g]] = climber.vertexStartChart(groups.vertex[k]);
-                          bytes += ChartStore::bytesOf(own[g][k - groups.start[g]]);
-                        }
-                      if (cached.fetch_add(bytes) + bytes > options.chartCacheBytes) cacheFull = true;
-                      ready[g].store(true, std::memory_order_release);
-                    }
-                    climber.useAnchor(cache[g]);
-                  } else if (s.cell > 0) {
-                    climber.setAnchor(g, current);
-                  }
+                  // The group's start chart: kept from the first pass, or the provider's own.
+                  if (kept.active())
+                    kept.enterGroup(g, climber.charts, pass == 0);
+                  else if (s.cell > 0)
+                    climber.charts.setAnchor(g, current);
                   for (int k = groups.start[g]; k < groups.start[g + 1]; ++k) {
                     const int v = groups.vertex[k];
-                    const Chart* ownChart = cacheCharts ? &own[g][k - groups.start[g]] : nullptr;
-                    if (ownChart && ownChart->vertex.empty()) ownChart = nullptr;  // starts in the group's
-                    const Climb c = climber.run(current, v, &next[static_cast<size_t>(v) * s.width], ownChart);
+                    const Chart* own = kept.active() ? kept.own(g, k - groups.start[g]) : nullptr;
+                    const Climb c = climber.run(current, v, &next[static_cast<size_t>(v) * s.width], own);
                     result.modes[v] = c.mode;
                     passIterations[v] = c.iterations;
                     if (!c.converged) result.converged[v] = 0;
                   }
-                  climber.clearAnchor();
+                  climber.charts.clearAnchor();
                 });
-    if (cacheFull) {  // over budget: later passes compute their charts again (same results)
-      cacheCharts = false;
-      cache = {};
-      own = {};
-    }
+    kept.endPass();
     for (int v = 0; v < n; ++v) {
       result.iterations[v] += passIterations[v];
       result.maxIterations = std::max(result.maxIterations, passIterations[v]);
@@ -229,7 +204,7 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
     current.swap(next);
   }
 
-  for (const Climber& c : climbers) result.chartsComputed += c.chartsComputed();
+  for (const Climber& c : climbers) result.diagnostics.chartsComputed += c.charts.chartsComputed();
   result.signal = AttributeSet(n);
   for (const Channel& c : s.channels) {
     std::vector<double> values(static_cast<size_t>(n) * c.dim);

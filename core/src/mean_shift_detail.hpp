@@ -1,5 +1,6 @@
 #pragma once
-// Private to the mean shift sources: the validated setup, one vertex's climb, segmentation.
+// Private to the mean shift sources: the validated setup, charts and their store, segmentation.
+// The climb and its chart supply: mean_shift_climb.hpp.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -63,10 +64,10 @@ struct Setup {
   double vertexArea = 0;  // the mean area per vertex
   double rangeTolerance2 = 0;
   double cell = 0;        // side of the smallest cube of vertices sharing a start chart (0: off)
-  double distortion = 0;  // MeanShiftOptions::chartDistortion
+  double distortion = 0;  // MeanShiftTuning::chartDistortion
   int kmax = 0;
   bool joint = false, exact = false;
-  bool singlePrecision = true;  // the specialised loops' weights (MeanShiftOptions::singlePrecisionKernel)
+  bool singlePrecision = true;  // the specialised loops' weights (MeanShiftTuning::singlePrecisionKernel)
   double weightScale = 1;       // 1 / the mean sample weight
   // The kernel loop's specialised form for this channel set (Climber::kernelSums), or General.
   enum class Loop { General, Gaussian, Similarity } loop = Loop::General;
@@ -98,7 +99,7 @@ struct Chart {
 };
 
 // Vertices grouped by cubes of side setup.cell, or by cubes of 2 or 4 times that side where the
-// surface is flat enough (MeanShiftOptions::chartDistortion); one group per vertex when the cell is
+// surface is flat enough (MeanShiftTuning::chartDistortion); one group per vertex when the cell is
 // 0. Each has the vertex nearest its centroid as anchor and the reach of its cube (its diagonal);
 // groups and their order depend only on the mesh.
 struct Groups {
@@ -110,7 +111,7 @@ Groups groupVertices(const Setup& setup);
 
 // Charts that workers computed (in one pass, those computed twice), kept for the rest of the filter
 // (every climb and pass): a worker whose own cache evicted such a chart copies it from here instead
-// of computing the log map again. Within a byte budget (a quarter of MeanShiftOptions::chartCacheBytes); results
+// of computing the log map again. Within a byte budget (a quarter of MeanShiftTuning::chartCacheBytes); results
 // never depend on what is kept. Thread-safe; a kept chart is never changed or removed.
 class ChartStore {
  public:
@@ -121,7 +122,7 @@ class ChartStore {
         budget_(budget), keepFirst_(keepFirst) {}
   // Whether to keep the chart at v (group < 0) or group's that a worker just computed: in one pass,
   // most charts serve the climbs of one neighbourhood and are never needed again (copying them all
-  // made the color set 3-4% slower), so only one computed before is.
+  // made the color set slower: docs/algorithms.md#charts), so only one computed before is.
   bool worthKeeping(int v, int group) {
     return (group >= 0 ? seenGroup_[group] : seenVertex_[v]).exchange(true, std::memory_order_relaxed) || keepFirst_;
   }
@@ -177,125 +178,21 @@ inline void forEachRun(const Chart& chart, double qx, double qy, double r, const
   }
 }
 
-// A worker's solver and scratch; climbs one vertex at a time. The result of run() depends only on
-// the vertex and the signal, never on what the worker climbed before.
-class Climber {
- public:
-  Climber(const Setup& setup, LogMap logMap);
-  // The shared start chart of a group (setGroups): a log map at its anchor that later run() calls
-  // start in when their vertex is within the group's reach of it. It is kept with the worker's
-  // other charts (and taken from them when there), so that climbs of other groups that come by
-  // continue in it. The result of a run does not depend on which runs came before it.
-  void setAnchor(int group, const std::vector<double>& signal);
-  // The same with a chart computed before by anchorChart() (blurring passes keep them: the domain
-  // does not move between passes); it must outlive the runs.
-  void useAnchor(const Chart& chart);
-  Chart anchorChart(int vertex, double reach);
-  void clearAnchor();
-  // The groups whose start charts a climb that leaves its chart continues in (Groups::of of the
-  // iterate's nearest vertex, when the iterate is within that chart's reach); null: vertex charts.
-  void setGroups(const Groups* groups) { groups_ = groups; }
-  // The groups' start charts that blurring passes keep, each readable once its flag is set: a
-  // climb that continues in a group's chart copies it from there instead of computing it again.
-  void setGroupCharts(const std::vector<Chart>* charts, const std::vector<std::atomic<bool>>* ready) {
-    groupCharts_ = charts;
-    groupReady_ = ready;
-  }
-  void setStore(ChartStore* store) { store_ = store; }
-  // Whether a climb from v starts in the current anchor's chart (v within the group's reach of it).
-  bool startsInAnchor(int v) const;
-  // The chart a climb from v starts in when not in its group's: a log map at v wide enough for the
-  // kernel about any point of v's faces plus the drift allowance (its `reach` is v's longest edge).
-  // Blurring passes keep these (the domain does not move), as they keep the groups' charts.
-  Chart vertexStartChart(int v);
-  // Mean shift from vertex v over the packed signal; writes the range value at the mode to out.
-  // `start`: v's chart from vertexStartChart, used when v does not start in the anchor's (else a
-  // vertex chart is computed or taken from the worker's cache: the same chart).
-  Climb run(const std::vector<double>& signal, int v, double* out, const Chart* start = nullptr);
-  // Call before each pass: the signal changes between passes, the charts do not.
-  void beginPass() { ++pass_; }
-  // Log maps this worker computed (charts), for MeanShiftResult::chartsComputed.
-  long long chartsComputed() const { return charts_; }
-
-  LogMap logMap;
-
-  // The signal rows and sample weights of a chart's entries in the chart's order, one array per
-  // dimension (value[d * stride + e]), so that the kernel loop reads memory in sequence. Single
-  // precision (Setup::singlePrecision) keeps its own copies: coordinates in units of h_s, weights
-  // over their mean. Gaussian loops: values less `offset` (their mean over the chart) times `scale`
-  // (√(log2 e / 2h_r²)), and coordinates times kSpatialScale, so that the kernel's exponent in base 2
-  // is a plain sum of squares.
-  struct Samples {
-    std::vector<double> weight, value;
-    std::vector<float> fx, fy, fweight, fvalue;
-    double offset[4] = {};
-    double scale[4] = {1, 1, 1, 1};
-    size_t stride = 0;
-  };
-  // √(log2 e / 2): a distance in units of h_s times this, squared, is the spatial exponent in base 2.
-  static constexpr double kSpatialScale = 0.84932180028801904272;
-
- private:
-  std::vector<int> order_, fill_;         // scratch of chartAt: cell of each entry, next slot of each cell
-  std::vector<double> scratchX_, scratchY_;  // and its coordinates, in log-map order
-  void chartAt(Chart& chart, const SurfacePoint& base, double radius);
-  // The range value of the signal at p (barycentric; unit vectors re-normalised).
-  void sample(const std::vector<double>& signal, const SurfacePoint& p, double* y) const;
-  // −log of the range kernel product between y and the signal row f.
-  double rangeExponent(const double* y, const double* f) const;
-  double rangeChange2(const double* a, const double* b) const;
-  // One iteration's weighted sums over the chart's entries within r of (qx, qy): Σw, Σw·dx, Σw·dy,
-  // and for joint updates Σw·(tangent of the range value) into acc_. generalSums serves every
-  // channel set; kernelSums the specialised ones of Setup::loop (mean_shift_sums.cpp).
-  void generalSums(const Chart& chart, const std::vector<double>& signal, double qx, double qy, double& sw,
-                   double& mx, double& my);
-  void kernelSums(const Chart& chart, const Samples& samples, double qx, double qy, double& sw, double& mx,
-                  double& my);
-  void gather(Samples& samples, const Chart& chart, const std::vector<double>& signal) const;
-
-  // The worker's charts: groups' start charts (setAnchor, and climbs that leave their chart near
-  // another group's anchor) and charts at vertices (climbs that start outside their group's chart,
-  // or leave theirs elsewhere). The most recent stay, since the climbs of neighbouring vertices
-  // head for the same modes along the same paths. A chart is the same whenever it is computed, so
-  // what is cached never changes a result. Up to 64 are kept (terrain-ms on a terrain's coarse mesh
-  // computed 2.1x fewer vertex charts than with 12), fewer when charts are large: about 32 MB.
-  struct VertexChart {
-    int vertex = -1, group = -1, pass = -1;  // a vertex's chart (group −1) or a group's start chart
-    bool pinned = false;  // the current anchor: not evicted
-    long long used = 0;
-    double reach = 0;  // how far from the vertex the iterate may go in this chart
-    Chart chart;
-    Samples samples;
-  };
-  static constexpr int kVertexCharts = 64;
-  static constexpr double kVertexChartBytes = 32e6;
-  static int vertexChartSlots(const Setup& setup);
-  std::vector<VertexChart> vertexCharts_;
-  long long clock_ = 0, charts_ = 0;
-  int pass_ = 0;
-  VertexChart& vertexChart(int u, const std::vector<double>& signal, int group = -1);
-  // p's coordinates in a chart from its face's corners, when all three are in it.
-  static bool locate(const Chart& chart, const Mesh& mesh, const SurfacePoint& p, Vec2& q);
-  double longestEdgeAt(int u) const;
-  // The chart at vertex v (reach: v's longest edge), into `chart`'s storage.
-  void vertexChartAt(Chart& chart, int v);
-  // p in the chart of its face's corner u (the corner's one-ring unfolded as its polar coordinates).
-  Vec2 inVertexChart(int u, const SurfacePoint& p) const;
-
-  const Setup& s_;
-  Chart local_;
-  const Chart* anchor_ = nullptr;
-  const Groups* groups_ = nullptr;
-  const std::vector<Chart>* groupCharts_ = nullptr;
-  const std::vector<std::atomic<bool>>* groupReady_ = nullptr;
-  ChartStore* store_ = nullptr;
-  Samples anchorSamples_, localSamples_;
-  bool anchorGathered_ = false;
-  VertexChart* pinned_ = nullptr;  // the cached chart anchor_ points into (setAnchor), or null
-  std::vector<int> slot_;  // per vertex: its entry in anchor_, or -1
-  std::vector<double> value_, next_, acc_;
+// The signal rows and sample weights of a chart's entries in the chart's order, one array per
+// dimension (value[d * stride + e]), so that the kernel loop reads memory in sequence. Single
+// precision (Setup::singlePrecision) keeps its own copies: coordinates in units of h_s, weights
+// over their mean. Gaussian loops: values less `offset` (their mean over the chart) times `scale`
+// (√(log2 e / 2h_r²)), and coordinates times kSpatialScale, so that the kernel's exponent in base 2
+// is a plain sum of squares.
+struct Samples {
+  std::vector<double> weight, value;
+  std::vector<float> fx, fy, fweight, fvalue;
+  double offset[4] = {};
+  double scale[4] = {1, 1, 1, 1};
+  size_t stride = 0;
 };
-
+// √(log2 e / 2): a distance in units of h_s times this, squared, is the spatial exponent in base 2.
+constexpr double kSpatialScale = 0.84932180028801904272;
 
 // Fills result.segment / segmentCount from result.modes and the filtered packed signal.
 void segmentModes(const Setup& setup, const std::vector<double>& signal, MeanShiftResult& result);

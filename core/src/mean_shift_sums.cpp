@@ -12,7 +12,7 @@
 #include <cstring>
 #include <type_traits>
 
-#include "mean_shift_detail.hpp"
+#include "mean_shift_climb.hpp"
 
 namespace geoshift::mean_shift_detail {
 
@@ -101,7 +101,7 @@ template <class T>
 }
 
 // 2^−a for a in [0, kMaxExponent2], single precision (Gaussian range kernels, whose exponents the
-// scaled samples give in base 2: Climber::Samples). No reduction by ln 2: n = round(−a), t = −a − n
+// scaled samples give in base 2: Samples). No reduction by ln 2: n = round(−a), t = −a − n
 // in [−1/2, 1/2] exactly, 2^t = e^(t ln 2) by its degree-7 Taylor polynomial (truncation below 6e-9
 // relative, under the format's own rounding). The loop runs 1.2× faster than with e^−a.
 [[gnu::always_inline]] inline Lanes<float>::Vec exp2Negative(Lanes<float>::Vec a) {
@@ -120,7 +120,7 @@ template <class T>
 }
 
 // −log of the Gaussian range kernel (eq. 9) of W dimensions; coef = 1/2h_r² per dimension (double).
-// Single precision: −log2, from values scaled by √(coef · log2 e) (Climber::gather), no coef.
+// Single precision: −log2, from values scaled by √(coef · log2 e) (ChartProvider::gather), no coef.
 template <class T, int W>
 struct GaussianRange {
   using Vec = typename Lanes<T>::Vec;
@@ -210,17 +210,17 @@ struct Totals {
 };
 
 // What an iteration's loop reads, in the precision of its weights: for single precision, chart
-// coordinates in units of h_s and signal values less the chart's offset (Climber::gather).
+// coordinates in units of h_s and signal values less the chart's offset (ChartProvider::gather).
 template <class T>
 struct Arrays {
   const T *x, *y, *weight, *value;
   size_t stride;
 };
 
-inline Arrays<double> arrays(const Chart& chart, const Climber::Samples& s, double) {
+inline Arrays<double> arrays(const Chart& chart, const Samples& s, double) {
   return {chart.x.data(), chart.y.data(), s.weight.data(), s.value.data(), s.stride};
 }
-inline Arrays<float> arrays(const Chart&, const Climber::Samples& s, float) {
+inline Arrays<float> arrays(const Chart&, const Samples& s, float) {
   return {s.fx.data(), s.fy.data(), s.fweight.data(), s.fvalue.data(), s.stride};
 }
 
@@ -282,9 +282,9 @@ template <class T, int W, class Range>
 // `unit` (1/h_s, or kSpatialScale/h_s for base-2 exponents) and rounded, and the step is corrected
 // by what the rounding moved the iterate.
 template <class T, int W, class Range>
-[[gnu::always_inline]] inline void addChart(const Chart& chart, const Climber::Samples& samples, double qx, double qy,
+[[gnu::always_inline]] inline void addChart(const Chart& chart, const Samples& samples, double qx, double qy,
                                             const Setup& s, const Range& range, Totals& totals) {
-  const double unit = !std::is_same_v<T, float> ? 1.0 : (Range::kBase2 ? Climber::kSpatialScale : 1.0) / s.hs;
+  const double unit = !std::is_same_v<T, float> ? 1.0 : (Range::kBase2 ? kSpatialScale : 1.0) / s.hs;
   const Arrays<T> in = arrays(chart, samples, T{});
   const T tx = static_cast<T>(qx * unit), ty = static_cast<T>(qy * unit);
   const T invTwoHs2 = static_cast<T>(s.invTwoHs2 / (unit * unit)), r2 = static_cast<T>(s.r2 * unit * unit);
@@ -301,7 +301,7 @@ template <class T, int W, class Range>
 }
 
 template <class T, int W>
-void addGaussian(const Chart& chart, const Climber::Samples& samples, double qx, double qy, const Setup& s,
+void addGaussian(const Chart& chart, const Samples& samples, double qx, double qy, const Setup& s,
                  const double* value, Totals& totals) {
   GaussianRange<T, W> range;
   for (int d = 0; d < W; ++d) {
@@ -315,7 +315,7 @@ void addGaussian(const Chart& chart, const Climber::Samples& samples, double qx,
 
 constexpr size_t kPad = 8;  // entries: one vector of either precision
 
-void Climber::gather(Samples& samples, const Chart& chart, const std::vector<double>& signal) const {
+void ChartProvider::gather(Samples& samples, const Chart& chart, const std::vector<double>& signal) const {
   const size_t n = chart.vertex.size();
   const int width = s_.width;
   samples.stride = n;
@@ -365,7 +365,7 @@ namespace {
 
 // The loop for the setup's channel set (makeSetup chooses Gaussian only for up to 4 dimensions).
 template <class T>
-[[gnu::always_inline]] inline void sumsIn(const Setup& s, const Chart& chart, const Climber::Samples& samples,
+[[gnu::always_inline]] inline void sumsIn(const Setup& s, const Chart& chart, const Samples& samples,
                                           double qx, double qy, const double* y, Totals& totals) {
   switch (s.loop) {
     case Setup::Loop::Gaussian:
@@ -385,7 +385,7 @@ template <class T>
   }
 }
 
-[[gnu::always_inline]] inline void sums(const Setup& s, const Chart& chart, const Climber::Samples& samples, double qx,
+[[gnu::always_inline]] inline void sums(const Setup& s, const Chart& chart, const Samples& samples, double qx,
                                         double qy, const double* y, Totals& totals) {
   if (s.singlePrecision)
     sumsIn<float>(s, chart, samples, qx, qy, y, totals);
@@ -396,14 +396,14 @@ template <class T>
 // The same loop compiled for the baseline instruction set and, on x86-64, for AVX2 (a vector in one
 // register instead of two), chosen at run time. Both do the same IEEE operations on every entry and
 // add in the same lanes (AVX2 alone brings no fused multiply-add), so their results are identical.
-[[gnu::flatten]] void sumsBaseline(const Setup& s, const Chart& chart, const Climber::Samples& samples, double qx,
+[[gnu::flatten]] void sumsBaseline(const Setup& s, const Chart& chart, const Samples& samples, double qx,
                                    double qy, const double* y, Totals& totals) {
   sums(s, chart, samples, qx, qy, y, totals);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
 [[gnu::flatten, gnu::target("avx2")]] void sumsAvx2(const Setup& s, const Chart& chart,
-                                                     const Climber::Samples& samples, double qx, double qy,
+                                                     const Samples& samples, double qx, double qy,
                                                      const double* y, Totals& totals) {
   sums(s, chart, samples, qx, qy, y, totals);
 }

@@ -6,6 +6,7 @@
 
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
+#include "geoshift/parallel.hpp"
 
 namespace geoshift {
 namespace {
@@ -71,8 +72,11 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
   std::vector<Vec3> inputNormal = options.referenceNormals.empty() ? faceNormals(mesh) : options.referenceNormals;
 
   VertexUpdateResult result;
-  std::vector<Vec3> x = mesh.positions(), candidate = x, step(nv), accum(nv);
-  std::vector<double> weight(nv);
+  std::vector<Vec3> x = mesh.positions(), candidate = x, step(nv);
+  std::vector<char> bad(nf);
+  ParallelOptions par = options.parallel;
+  par.chunk = 1024;
+  const Progress quiet;  // the iterations report; the parallel loops inside them do not
   std::vector<Vec3> currentCross(nf);
   std::vector<double> scale(nv);
   std::vector<char> halvedThisRound(nv);
@@ -90,29 +94,31 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
 
   for (int it = 0; it < options.iterations; ++it) {
     progress.step(static_cast<double>(it) / options.iterations, "vertex update");
-    std::fill(accum.begin(), accum.end(), Vec3::Zero());
-    std::fill(weight.begin(), weight.end(), 0.0);
-    for (int f = 0; f < nf; ++f) {
-      const Face& t = mesh.face(f);
-      currentCross[f] = crossOf(x, t);
-      const Vec3& n = target[f];
-      if (n.squaredNorm() == 0) continue;
-      const double w = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
-      const Vec3 c = (x[t[0]] + x[t[1]] + x[t[2]]) / 3.0;
-      for (int v : t) {
-        accum[v] += (w * n.dot(c - x[v])) * n;
-        weight[v] += w;
+    // Each vertex gathers over its faces in increasing face order: the sums (and so the results)
+    // are those of a serial pass over the faces, for any thread count.
+    parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { currentCross[f] = crossOf(x, mesh.face(f)); });
+    parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
+      Vec3 sum = Vec3::Zero();
+      double wsum = 0;
+      for (int k = vf.start[v]; k < vf.start[v + 1]; ++k) {
+        const int f = vf.face[k];
+        const Vec3& n = target[f];
+        if (n.squaredNorm() == 0) continue;
+        const Face& t = mesh.face(f);
+        const double w = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
+        const Vec3 c = (x[t[0]] + x[t[1]] + x[t[2]]) / 3.0;
+        sum += (w * n.dot(c - x[v])) * n;
+        wsum += w;
       }
-    }
-    for (int v = 0; v < nv; ++v) {
-      step[v] = !pinned[v] && weight[v] > 0 ? Vec3(accum[v] / weight[v]) : Vec3::Zero();
+      step[v] = !pinned[v] && wsum > 0 ? Vec3(sum / wsum) : Vec3::Zero();
       scale[v] = 1.0;
       candidate[v] = x[v] + step[v];
-    }
+    });
 
+    parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { bad[f] = !faceOk(f); });
     badFaces.clear();
     for (int f = 0; f < nf; ++f)
-      if (!faceOk(f)) badFaces.push_back(f);
+      if (bad[f]) badFaces.push_back(f);
     while (!badFaces.empty()) {
       // Shorten the steps of every vertex of a bad face once per round, then re-check only the
       // faces those vertices touch.

@@ -1,4 +1,4 @@
-// Lifting analysis (ALGORITHMS.md §5): per level an independent set of odd vertices, chosen greedily
+// Lifting analysis (docs/algorithms.md#wavelets): per level an independent set of odd vertices, chosen greedily
 // in ascending cost, each predicted from its even one-ring and collapsed into one even neighbour;
 // then the integral update A'_e = A_e + Σ_o p_oe A_o and the signal update f_e += Σ_o u_eo d_o with
 // LOCAAT's minimum-norm u_eo = A_o A'_e / Σ_e' A'_e'^2, which keeps Σ_v A_v f_v exactly invariant.

@@ -1,4 +1,4 @@
-// Lifting synthesis (ALGORITHMS.md §5), coarse to fine: per level undo the update with the scaled
+// Lifting synthesis (docs/algorithms.md#wavelets), coarse to fine: per level undo the update with the scaled
 // details, f_e -= Σ_o u_eo α d_o, then predict the odd vertices back, f_o = α d_o + Σ_e p_oe f_e.
 // The odd vertices of a level are independent, so their order within the level does not matter.
 #include <algorithm>

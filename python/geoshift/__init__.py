@@ -5,8 +5,8 @@ int32 (M, 3), attributes (N,) or (N, dim) by name. Long calls release the GIL, t
 callback and stop on Ctrl-C. Bad input raises geoshift.InputError (a ValueError) with the core's
 message. geoshift.tiles filters terrains and meshes too large for one machine on Dask.
 """
-from ._geoshift import (BilateralNormalOptions, Cancelled, DenoiseOptions, InputError, MeanShiftOptions,
-                        ParallelOptions, SignalChannel, TaubinOptions, TerrainOptions, VertexUpdateOptions,
+from ._geoshift import (BilateralNormalOptions, Cancelled, DenoiseOptions, FaceNeighborhoodOptions, InputError,
+                        MeanShiftOptions, PaperDenoiseOptions, ParallelOptions, SignalChannel, TaubinOptions, TerrainOptions, VertexUpdateOptions,
                         WaveletOptions, color_map, delaunay_2d, height_above_ground, spread_bandwidth)
 from ._filters import (DenoiseResult, FilterResult, Multiresolution, analyze, bilateral_normal_denoise, curvature,
                        curvatures, denoise, mean_shift, presets, synthesize, taubin_smooth, wavelet_filter)
@@ -18,8 +18,8 @@ from ._terrain import (grid_terrain, point_terrain, procedural_terrain, read_geo
 __version__ = "0.1.0"
 
 __all__ = [
-    "BilateralNormalOptions", "Cancelled", "DenoiseOptions", "DenoiseResult", "Document", "FilterResult",
-    "Geodesics", "InputError", "MeanShiftOptions", "Mesh", "Multiresolution", "ParallelOptions", "SignalChannel",
+    "BilateralNormalOptions", "Cancelled", "DenoiseOptions", "DenoiseResult", "Document", "FaceNeighborhoodOptions",
+    "FilterResult", "Geodesics", "InputError", "MeanShiftOptions", "Mesh", "Multiresolution", "PaperDenoiseOptions", "ParallelOptions", "SignalChannel",
     "TaubinOptions", "TerrainOptions", "VertexUpdateOptions", "WaveletOptions", "analyze",
     "bilateral_normal_denoise", "color_map", "curvature", "curvatures", "delaunay_2d", "denoise", "exp_map",
     "grid_terrain", "height_above_ground", "log_map", "mean_shift", "point_terrain", "presets",

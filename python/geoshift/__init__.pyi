@@ -87,21 +87,53 @@ class VertexUpdateOptions:
                  flip_guard: Literal["input", "input_or_target"] = "input") -> None: ...
     def to_dict(self) -> Dict[str, Any]: ...
 
-class DenoiseOptions:
+class FaceNeighborhoodOptions:
+    radius: float
+    spatial_bandwidth: float
+    parallel: ParallelOptions
+    def __init__(self, *, radius: float = 1.75, spatial_bandwidth: float = 0.6,
+                 parallel: Union[ParallelOptions, dict, None] = None) -> None: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+
+class PaperDenoiseOptions:
     passes: int
     face_normals: Literal["consensus", "mean"]
     consensus_bandwidth: float
     mean_shift: MeanShiftOptions
     support: TaubinOptions
-    levels: int
-    alpha: List[float]
-    wavelet: WaveletOptions
     vertex_update: VertexUpdateOptions
     def __init__(self, *, passes: int = 3, face_normals: Literal["consensus", "mean"] = "consensus",
                  consensus_bandwidth: float = 0.25, mean_shift: Union[MeanShiftOptions, dict, None] = None,
-                 support: Union[TaubinOptions, dict, None] = None, levels: int = 0, alpha: Sequence[float] = (0.0,),
-                 wavelet: Union[WaveletOptions, dict, None] = None,
+                 support: Union[TaubinOptions, dict, None] = None,
                  vertex_update: Union[VertexUpdateOptions, dict, None] = None) -> None: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+
+class DenoiseOptions:
+    preset: Literal["default", "paper"]
+    noise_level: float
+    strength: float
+    range_bandwidths: List[float]
+    neighborhood: FaceNeighborhoodOptions
+    support_smoothing: TaubinOptions
+    presmoothing: List[int]
+    max_passes: int
+    patience: int
+    fixed_passes: int
+    vertex_iterations: int
+    seed: int
+    threads: int
+    paper: PaperDenoiseOptions
+    levels: int
+    alpha: List[float]
+    wavelet: WaveletOptions
+    def __init__(self, *, preset: Literal["default", "paper"] = "default", noise_level: float = 0.0,
+                 strength: float = 1.0, range_bandwidths: Sequence[float] = (0.35,),
+                 neighborhood: Union[FaceNeighborhoodOptions, dict, None] = None,
+                 support_smoothing: Union[TaubinOptions, dict, None] = None, presmoothing: Sequence[int] = (2, 10),
+                 max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
+                 seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
+                 levels: int = 0, alpha: Sequence[float] = (0.0,),
+                 wavelet: Union[WaveletOptions, dict, None] = None) -> None: ...
     def to_dict(self) -> Dict[str, Any]: ...
 
 class BilateralNormalOptions:

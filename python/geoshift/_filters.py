@@ -167,10 +167,12 @@ def _moved(mesh: Mesh, positions: np.ndarray) -> Mesh:
 
 def denoise(mesh: Mesh, *, weld: bool = True, progress: Progress = None,
             options: Union[DenoiseOptions, dict, None] = None, **kwargs) -> DenoiseResult:
-    """Mesh denoising by Riemannian mean shift of the vertex normals (the paper's 4.1): passes of
-    normal filtering, face normals, vertex update, on a Taubin-smoothed support. Keyword arguments
-    are the fields of DenoiseOptions (nested ones as dicts or options objects, e.g.
-    mean_shift=dict(range_bandwidth=0.4)); levels > 0 denoises a wavelet-coarsened mesh."""
+    """Mesh denoising (docs/denoising.md). The default: the noise level is estimated from the mesh,
+    face normals are filtered by blurring mean shift over geodesic neighbourhoods, the vertices
+    follow, and the amount of smoothing is chosen by Stein's unbiased risk estimate; preset="paper"
+    runs the paper's 4.1 pipeline. Keyword arguments are the fields of DenoiseOptions (nested ones
+    as dicts or options objects, e.g. paper=dict(passes=2)); levels > 0 denoises a
+    wavelet-coarsened mesh. stats holds what was estimated and chosen."""
     o = _options(DenoiseOptions, options, kwargs)
     r = _core._denoise(mesh._built(weld), o, progress)
     stats = {k: v for k, v in r.items() if k != "positions"}

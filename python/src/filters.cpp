@@ -9,6 +9,7 @@
 #include "geoshift/denoise.hpp"
 #include "geoshift/geometry.hpp"
 #include "geoshift/hybrid.hpp"
+#include "geoshift/filter_request.hpp"
 #include "geoshift/presets.hpp"
 #include "geoshift/smoothing.hpp"
 #include "options.hpp"
@@ -28,16 +29,6 @@ struct Named {
 struct Inputs {
   std::vector<double> colors;  // caller layout RGB, empty when none
   std::vector<Named> attributes;
-  const Named* find(const std::string& name) const {
-    for (const Named& a : attributes)
-      if (a.name == name || a.name == "_" + name) return &a;
-    return nullptr;
-  }
-  std::string names() const {
-    std::string known;
-    for (const Named& a : attributes) known += (known.empty() ? "" : ", ") + a.name;
-    return known.empty() ? "none" : known;
-  }
 };
 
 Inputs inputsOf(const Built& b, const py::handle& colors, const py::dict& attributes, const std::vector<std::string>& unit) {
@@ -116,7 +107,6 @@ py::dict meanShiftCall(Built& b, const std::vector<std::string>& signal, const p
                        double unit, const py::object& callback) {
   const Inputs in = inputsOf(b, colors, attributes, unitVectors);
   const Mesh& mesh = b.mesh();
-  const int n = mesh.vertexCount();
   MeanShiftOptions options = given;
   const bool channelsGiven = !given.channels.empty();
   HybridOptions hybrid;
@@ -128,56 +118,23 @@ py::dict meanShiftCall(Built& b, const std::vector<std::string>& signal, const p
   Run run(callback);
   std::vector<Source> sources;
   const HybridResult r = run([&](const Progress& progress) {
-    // The signal names as `geoshift filter --signal` reads them (cli/filter_signal.cpp).
-    std::vector<std::string> names = signal;
-    if (names.size() == 1 && names[0] == "terrain") {
-      names.clear();
-      for (const char* candidate : {"_HEIGHT_ABOVE_GROUND", "_VEGETATION_HEIGHT"})
-        if (in.find(candidate)) {
-          names.push_back(candidate);
-          break;
-        }
-      if (in.find("_CLASS")) names.push_back("_CLASS");
-      if (names.empty())
-        throw InputError("the mesh has no terrain attribute (_HEIGHT_ABOVE_GROUND, _VEGETATION_HEIGHT or _CLASS); "
-                         "make one with geoshift.read_terrain, or name the attribute in signal");
-    }
-    if (names.empty()) throw InputError("signal names no attribute");
-    AttributeSet set(n);
-    std::vector<SignalChannel> channels;
-    for (const std::string& name : names) {
-      double hr = 0;
-      RangeKernel kernel = RangeKernel::Gaussian;
-      if (name == "color") {
-        if (in.colors.empty()) throw InputError("the mesh has no vertex colors; choose signal normal, curvature or an attribute");
-        set.set("COLOR", 3, AttributeKind::Euclidean, b.toMesh(in.colors, 3));
-        sources.push_back({"color", "COLOR"});
-        hr = 0.1;
-      } else if (name == "normal") {
-        std::vector<double> flat;
-        flat.reserve(3 * static_cast<size_t>(n));
-        for (const Vec3& v : vertexNormals(mesh)) flat.insert(flat.end(), {v.x(), v.y(), v.z()});
-        set.set("NORMAL", 3, AttributeKind::UnitVector, std::move(flat));
-        sources.push_back({"normal", "NORMAL"});
-        kernel = RangeKernel::NormalSimilarity;
-        hr = 0.45;
-      } else if (name == "curvature") {
-        std::vector<double> k = curvatures(mesh).get(CurvatureKind::Absolute);
-        hr = spreadBandwidth(k, 1);
-        set.set("_CURVATURE", 1, AttributeKind::Euclidean, std::move(k));
-        sources.push_back({"curvature", "_CURVATURE"});
-      } else {
-        const Named* a = in.find(name);
-        if (!a)
-          throw InputError("the mesh has no attribute '" + name + "' (it has: " + in.names() + "; or use color, normal, curvature)");
-        if (set.contains(a->name)) throw InputError("attribute '" + a->name + "' is named twice in signal");
-        std::vector<double> values = b.toMesh(a->values, a->dim, a->unit);
-        hr = spreadBandwidth(values, a->dim);
-        set.set(a->name, a->dim, a->unit ? AttributeKind::UnitVector : AttributeKind::Euclidean, std::move(values));
-        sources.push_back({"attribute", a->name});
-      }
-      channels.push_back({sources.back().name, rangeGiven ? given.rangeBandwidth : hr, kernel});
-    }
+    // What the names mean is the core's (filter_request.hpp), as for `geoshift filter --signal`.
+    SignalInputs inputs;
+    if (!in.colors.empty()) inputs.colors = [&] { return b.toMesh(in.colors, 3); };
+    for (const Named& a : in.attributes) inputs.attributeNames.push_back(a.name);
+    inputs.attribute = [&](const std::string& name) {
+      const Named& a = *std::find_if(in.attributes.begin(), in.attributes.end(), [&](const Named& x) { return x.name == name; });
+      return Attribute{a.name, a.dim, a.unit ? AttributeKind::UnitVector : AttributeKind::Euclidean,
+                       b.toMesh(a.values, a.dim, a.unit)};
+    };
+    std::string list;
+    for (const std::string& name : signal) list += (list.empty() ? "" : ",") + name;
+    const FilterSignal request = filterSignal(mesh, list, inputs, rangeGiven ? std::optional(given.rangeBandwidth) : std::nullopt, progress);
+    const AttributeSet& set = request.values;
+    const std::vector<SignalChannel>& channels = request.channels;
+    static const char* const kinds[] = {"color", "normal", "curvature", "attribute"};
+    for (size_t c = 0; c < channels.size(); ++c)
+      sources.push_back({kinds[static_cast<int>(request.sources[c])], channels[c].attribute});
     // Channels given by the caller (names of the set above) replace the ones the names imply.
     options.channels = channelsGiven ? given.channels : channels;
 
@@ -225,8 +182,8 @@ py::dict meanShiftCall(Built& b, const std::vector<std::string>& signal, const p
   out["converged_fraction"] = c.convergedFraction;
   out["threads"] = c.threads;
   out["seconds"] = r.seconds > 0 ? r.seconds : c.seconds;
-  out["start_charts"] = c.startCharts;
-  out["charts_computed"] = c.chartsComputed;
+  out["start_charts"] = c.diagnostics.startCharts;
+  out["charts_computed"] = c.diagnostics.chartsComputed;
   return out;
 }
 
@@ -302,6 +259,12 @@ void bindFilters(py::module_& m) {
     std::vector<Vec3> positions(b.callerVertices());
     for (size_t i = 0; i < positions.size(); ++i) positions[i] = mesh.position(b.build.vertexOf[i]);
     out["positions"] = fromPoints(positions);
+    out["noise_level"] = r.noiseLevel;
+    out["noise_estimated"] = r.noiseEstimated;
+    out["presmoothing_steps"] = r.presmoothingSteps;
+    out["passes"] = r.passes;
+    out["passes_run"] = r.passesRun;
+    out["estimated_error"] = r.estimatedError;
     out["mean_iterations"] = r.meanIterations;
     out["converged_fraction"] = r.convergedFraction;
     out["limited_steps"] = r.limitedSteps;

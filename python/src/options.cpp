@@ -118,6 +118,10 @@ void bindOptions(py::module_& m) {
   py::implicitly_convertible<py::dict, SignalChannel>();
   py::implicitly_convertible<py::tuple, SignalChannel>();
 
+  // The speed and accuracy knobs (MeanShiftTuning) stay flat keywords in Python.
+#define TUNING(field)                                                             \
+  [](const MeanShiftOptions& o) { return o.tuning.field; },                       \
+      [](MeanShiftOptions& o, decltype(MeanShiftTuning::field) v) { o.tuning.field = v; }
   auto ms = optionsClass<MeanShiftOptions>(m, "MeanShiftOptions",
                                            "Options of the Riemannian (blurring) mean shift; spatial ones in average "
                                            "edge lengths (AEL), range ones in the signal's units.");
@@ -128,18 +132,19 @@ void bindOptions(py::module_& m) {
       .def_readwrite("epsilon", &MeanShiftOptions::epsilon)
       .def_readwrite("max_iterations", &MeanShiftOptions::maxIterations)
       .def_readwrite("passes", &MeanShiftOptions::passes)
-      .def_readwrite("exact_charts", &MeanShiftOptions::exactCharts)
-      .def_readwrite("recentre", &MeanShiftOptions::recentre)
-      .def_readwrite("chart_cell", &MeanShiftOptions::chartCell)
-      .def_readwrite("chart_distortion", &MeanShiftOptions::chartDistortion)
-      .def_readwrite("chart_cache_bytes", &MeanShiftOptions::chartCacheBytes)
+      .def_property("exact_charts", TUNING(exactCharts))
+      .def_property("recentre", TUNING(recentre))
+      .def_property("chart_cell", TUNING(chartCell))
+      .def_property("chart_distortion", TUNING(chartDistortion))
+      .def_property("chart_cache_bytes", TUNING(chartCacheBytes))
       .def_readwrite("area_weighted", &MeanShiftOptions::areaWeighted)
-      .def_readwrite("single_precision_kernel", &MeanShiftOptions::singlePrecisionKernel)
+      .def_property("single_precision_kernel", TUNING(singlePrecisionKernel))
       .def_readwrite("segments", &MeanShiftOptions::segments)
       .def_readwrite("parallel", &MeanShiftOptions::parallel)
       .def_property(
           "threads", [](const MeanShiftOptions& o) { return o.parallel.threads; },
           [](MeanShiftOptions& o, int t) { o.parallel.threads = t; }, "parallel.threads");
+#undef TUNING
   enumField(ms, "range_kernel", &MeanShiftOptions::rangeKernel, kernels);
   enumField(ms, "range_update", &MeanShiftOptions::rangeUpdate,
             {{"sampled", RangeUpdate::Sampled}, {"joint", RangeUpdate::Joint}});
@@ -169,17 +174,40 @@ void bindOptions(py::module_& m) {
   enumField(update, "flip_guard", &VertexUpdateOptions::flipGuard,
             {{"input", FlipGuard::Input}, {"input_or_target", FlipGuard::InputOrTarget}});
 
-  auto denoise = optionsClass<DenoiseOptions>(m, "DenoiseOptions", "Mesh denoising by mean shift of the vertex normals.");
-  denoise.def_readwrite("passes", &DenoiseOptions::passes)
-      .def_readwrite("consensus_bandwidth", &DenoiseOptions::consensusBandwidth)
-      .def_readwrite("mean_shift", &DenoiseOptions::meanShift)
-      .def_readwrite("support", &DenoiseOptions::support)
+  auto hood = optionsClass<FaceNeighborhoodOptions>(m, "FaceNeighborhoodOptions",
+                                                    "Geodesic face neighbourhoods of the default denoiser (AEL units).");
+  hood.def_readwrite("radius", &FaceNeighborhoodOptions::radius)
+      .def_readwrite("spatial_bandwidth", &FaceNeighborhoodOptions::spatialBandwidth)
+      .def_readwrite("parallel", &FaceNeighborhoodOptions::parallel);
+
+  auto paper = optionsClass<PaperDenoiseOptions>(m, "PaperDenoiseOptions", "The paper's 4.1 denoising pipeline.");
+  paper.def_readwrite("passes", &PaperDenoiseOptions::passes)
+      .def_readwrite("consensus_bandwidth", &PaperDenoiseOptions::consensusBandwidth)
+      .def_readwrite("mean_shift", &PaperDenoiseOptions::meanShift)
+      .def_readwrite("support", &PaperDenoiseOptions::support)
+      .def_readwrite("vertex_update", &PaperDenoiseOptions::vertexUpdate);
+  enumField(paper, "face_normals", &PaperDenoiseOptions::faceNormals,
+            {{"consensus", FaceNormalRule::Consensus}, {"mean", FaceNormalRule::Mean}});
+
+  auto denoise = optionsClass<DenoiseOptions>(
+      m, "DenoiseOptions", "Mesh denoising: face-normal mean shift with SURE (default) or the paper's pipeline.");
+  denoise.def_readwrite("noise_level", &DenoiseOptions::noiseLevel)
+      .def_readwrite("strength", &DenoiseOptions::strength)
+      .def_readwrite("range_bandwidths", &DenoiseOptions::rangeBandwidths)
+      .def_readwrite("neighborhood", &DenoiseOptions::neighborhood)
+      .def_readwrite("support_smoothing", &DenoiseOptions::supportSmoothing)
+      .def_readwrite("presmoothing", &DenoiseOptions::presmoothing)
+      .def_readwrite("max_passes", &DenoiseOptions::maxPasses)
+      .def_readwrite("patience", &DenoiseOptions::patience)
+      .def_readwrite("fixed_passes", &DenoiseOptions::fixedPasses)
+      .def_readwrite("vertex_iterations", &DenoiseOptions::vertexIterations)
+      .def_readwrite("seed", &DenoiseOptions::seed)
+      .def_readwrite("threads", &DenoiseOptions::threads)
+      .def_readwrite("paper", &DenoiseOptions::paper)
       .def_readwrite("levels", &DenoiseOptions::levels)
       .def_readwrite("alpha", &DenoiseOptions::alpha)
-      .def_readwrite("wavelet", &DenoiseOptions::wavelet)
-      .def_readwrite("vertex_update", &DenoiseOptions::vertexUpdate);
-  enumField(denoise, "face_normals", &DenoiseOptions::faceNormals,
-            {{"consensus", FaceNormalRule::Consensus}, {"mean", FaceNormalRule::Mean}});
+      .def_readwrite("wavelet", &DenoiseOptions::wavelet);
+  enumField(denoise, "preset", &DenoiseOptions::preset, {{"default", DenoisePreset::Default}, {"paper", DenoisePreset::Paper}});
 
   auto bilateral = optionsClass<BilateralNormalOptions>(m, "BilateralNormalOptions", "Bilateral normal filtering.");
   bilateral.def_readwrite("normal_iterations", &BilateralNormalOptions::normalIterations)

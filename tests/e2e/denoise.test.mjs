@@ -52,10 +52,21 @@ test('a GLB given to file-input is denoised and exported with the same vertex co
   assert.equal(s.state, 'ok', s.text);
   await shoot(page, 'denoise-input');
 
+  // The Denoise preset leads with strength, keep edges and the noise level; the rest is folded.
+  await page.getByTestId('preset-select').selectOption('denoise');
+  for (const key of ['strength', 'hr', 'noise']) assert.ok(await page.locator(`[data-param="${key}"]`).isVisible(), key);
+  assert.equal(await page.locator('[data-param="passes"]').isVisible(), false, 'passes is an expert setting');
+
   await runPreset(page, 'denoise', { passes: 1 });
   const report = await page.evaluate(() => window.__geoshift.lastRun());
   assert.ok(report, await page.evaluate(() => window.__geoshift.lastError()));
   assert.equal(report.meshes, 2);
+  // The noise level was measured on the torus (±0.005 per coordinate, about 0.02 of its average
+  // edge length across the surface) and is shown.
+  const torusStats = report.stats.find((s) => typeof s.noiseLevel === 'number');
+  assert.ok(torusStats && torusStats.noiseEstimated === 'yes', JSON.stringify(report.stats));
+  assert.ok(torusStats.noiseLevel > 0.005 && torusStats.noiseLevel < 0.1, `noise level ${torusStats.noiseLevel}`);
+  assert.match(await page.getByTestId('metrics').innerText(), /Noise level[\s\S]*measured on the mesh/);
   await shoot(page, 'denoise-output');
 
   const before = parseGlb(input);

@@ -121,6 +121,11 @@ export async function runPreset(page, presetId, values = {}) {
 export async function setParams(page, values) {
   for (const [key, value] of Object.entries(values)) {
     const field = page.locator(`[data-param="${key}"]`);
+    // Expert parameters sit in a folded folder: unfold it, as a person would.
+    await page.evaluate((k) => {
+      const folder = document.querySelector(`[data-param="${k}"]`)?.closest('.lil-gui.closed');
+      if (folder) folder.querySelector(':scope > .title')?.click();
+    }, key);
     if (typeof value === 'string') await page.evaluate(([k, v]) => window.__geoshift.setParam(k, v), [key, value]);
     else {
       const input = field.locator('input').first();

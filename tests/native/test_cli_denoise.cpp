@@ -28,11 +28,26 @@ TEST_CASE("cli: denoise removes noise with every method and says what it did", "
   const double noisy = rmsToClean(dir / "noisy.off", dir / "clean.off");
   REQUIRE(noisy > 0);
 
-  // The default method is the Riemannian mean shift (the paper's settings).
+  // The default: the mean shift denoiser says what it estimated and what SURE chose.
   Run r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "meanshift.off"));
   REQUIRE(r.code == 0);
   CHECK_THAT(r.err, Catch::Contains("denoise meanshift: 594 vertices in 1 part"));
-  CHECK(rmsToClean(dir / "meanshift.off", dir / "clean.off") < 0.6 * noisy);
+  CHECK_THAT(r.err, Catch::Contains("AEL (estimated from the mesh)"));
+  CHECK_THAT(r.err, Catch::Contains("chosen by SURE"));
+  CHECK(rmsToClean(dir / "meanshift.off", dir / "clean.off") < 0.5 * noisy);
+
+  // A given noise level is used as given; a fixed pass count skips SURE.
+  r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "fixed.off") + " --noise 0.2 --passes 3");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("noise level 0.2 AEL (given)"));
+  CHECK_THAT(r.err, Catch::Contains("3 mean shift passes (fixed)"));
+  CHECK(rmsToClean(dir / "fixed.off", dir / "clean.off") < 0.6 * noisy);
+
+  // The paper's pipeline stays available.
+  r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "paper.off") + " --preset paper --passes 2 --kmax 20");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("paper preset) 2 passes"));
+  CHECK(rmsToClean(dir / "paper.off", dir / "clean.off") < 0.6 * noisy);
 
   r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "bilateral.off") + " --method bilateral");
   REQUIRE(r.code == 0);
@@ -63,6 +78,13 @@ TEST_CASE("cli: denoise refuses bad input without writing anything", "[cli][deno
   CHECK_THAT(r.err, Catch::Contains("magic"));
   r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --sigma-s 0");
   CHECK(r.code != 0);
+  // An option of the other preset is refused, naming it.
+  r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --kmax 10");
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Catch::Contains("--kmax does not apply to --preset default"));
+  r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --preset paper --strength 2");
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Catch::Contains("--strength does not apply to --preset paper"));
   r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --method taubin --mu 0.1");
   CHECK(r.code == 1);
   CHECK_THAT(r.err, Catch::Contains("mu"));

@@ -1,4 +1,4 @@
-// Discrete curvatures (ALGORITHMS.md §6) against the analytic oracles of §9.
+// Discrete curvatures (docs/algorithms.md#curvature) against analytic answers (docs/testing.md#what-tests-assert).
 #include <catch2/catch.hpp>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Exp map by straightest geodesics against the analytic oracles of ALGORITHMS.md §9: straight
+// Exp map by straightest geodesics against the analytic oracles of docs/testing.md#what-tests-assert: straight
 // segments on a jittered plane, the unrolled strip of a prism cylinder, great circles on an
 // icosphere, generators of a cone; plus boundaries, degenerate triangles and the frame conversion.
 #include <catch2/catch.hpp>
@@ -143,7 +143,7 @@ TEST_CASE("on a prism cylinder the exp map follows the unrolled strip", "[expmap
 namespace {
 
 // Mean and max distance between exp_p(v) and the great-circle point cos(|v|/R) p + R sin(|v|/R) v̂
-// (§9.3) for traces of length πR/2 from random face points; p and v̂ are the start point and its
+// (docs/testing.md#what-tests-assert) for traces of length πR/2 from random face points; p and v̂ are the start point and its
 // direction pushed onto the sphere.
 std::pair<double, double> sphereErrors(int level, double radius, int samples) {
   const Mesh m = build(shapes::icosphere(level, radius));

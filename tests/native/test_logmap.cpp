@@ -1,4 +1,4 @@
-// Log map (DGPC, ALGORITHMS.md §1) against the analytic oracles of §9: exact polar coordinates on
+// Log map (DGPC, docs/algorithms.md#log-map) against analytic answers (docs/testing.md#what-tests-assert): exact polar coordinates on
 // flat surfaces (jittered plane, prism cylinder, flat cone), convergence on the sphere.
 #include <catch2/catch.hpp>
 

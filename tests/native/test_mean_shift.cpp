@@ -1,4 +1,4 @@
-// Riemannian mean shift (ALGORITHMS.md §8, §9.6): fixed points, the h_r → ∞ limit against a
+// Riemannian mean shift (docs/algorithms.md#mean-shift; docs/testing.md#what-tests-assert): fixed points, the h_r → ∞ limit against a
 // brute-force geodesic Gaussian, a noisy two-region step, blurring passes, threads, cancel.
 #include <catch2/catch.hpp>
 
@@ -103,7 +103,7 @@ double worstAgainstGaussian(const Mesh& mesh, const std::vector<double>& signal,
   o.rangeBandwidth = 1e9;
   o.maxIterations = 1;
   o.rangeUpdate = RangeUpdate::Joint;
-  o.singlePrecisionKernel = singlePrecision;
+  o.tuning.singlePrecisionKernel = singlePrecision;
   const std::vector<double> filtered = meanShift(geometry, set, o).signal.get("S").values;
   const std::vector<double> area = vertexAreas(mesh);
   const double hs = hsAel * geometry.averageEdgeLength(), radius = radiusAel * geometry.averageEdgeLength();
@@ -241,15 +241,15 @@ TEST_CASE("reused charts equal exact charts on a plane", "[meanshift]") {
   o.spatialBandwidth = 2;
   o.rangeBandwidth = 0.2;
   const MeanShiftResult reused = meanShift(geometry, colors(rgb), o);
-  o.chartDistortion = 0;  // cubes of side h_s only
+  o.tuning.chartDistortion = 0;  // cubes of side h_s only
   const MeanShiftResult unmerged = meanShift(geometry, colors(rgb), o);
-  o.exactCharts = true;
+  o.tuning.exactCharts = true;
   const MeanShiftResult exact = meanShift(geometry, colors(rgb), o);
   // The plane is flat: cubes merge into fewer, wider groups (at most 200 vertices each), and
   // their charts are exact all the same.
-  CHECK(reused.startCharts < unmerged.startCharts / 4);
-  CHECK(reused.startCharts * 200 >= mesh.vertexCount());
-  CHECK(exact.startCharts == 0);
+  CHECK(reused.diagnostics.startCharts < unmerged.diagnostics.startCharts / 4);
+  CHECK(reused.diagnostics.startCharts * 200 >= mesh.vertexCount());
+  CHECK(exact.diagnostics.startCharts == 0);
   const auto& b = exact.signal.get("COLOR").values;
   for (const MeanShiftResult* r : {&reused, &unmerged}) {
     const auto& a = r->signal.get("COLOR").values;
@@ -269,17 +269,17 @@ TEST_CASE("start charts are shared over wider cubes only where the surface is fl
   const Mesh sphere = build(shapes::icosphere(4));
   const AttributeSet noisy = colors(stepColors(sphere, 0.08, 5));
   const MeanShiftResult merged = meanShift(sphere, noisy, o);
-  o.chartDistortion = 0;
+  o.tuning.chartDistortion = 0;
   const MeanShiftResult unmerged = meanShift(sphere, noisy, o);
-  CHECK(merged.startCharts == unmerged.startCharts);
+  CHECK(merged.diagnostics.startCharts == unmerged.diagnostics.startCharts);
   REQUIRE(merged.signal.get("COLOR").values == unmerged.signal.get("COLOR").values);
 
   const Mesh tube = build(shapes::cylinder(64, 40, 1.0, 4.0));
   const AttributeSet tubeColors = colors(stepColors(tube, 0.08, 5));
   const MeanShiftResult tubeUnmerged = meanShift(tube, tubeColors, o);
-  o.chartDistortion = 0.1;
+  o.tuning.chartDistortion = 0.1;
   const MeanShiftResult tubeMerged = meanShift(tube, tubeColors, o);
-  CHECK(tubeMerged.startCharts < tubeUnmerged.startCharts / 2);
+  CHECK(tubeMerged.diagnostics.startCharts < tubeUnmerged.diagnostics.startCharts / 2);
 }
 
 TEST_CASE("single-precision kernel weights agree with double precision on a curved surface", "[meanshift]") {
@@ -318,9 +318,9 @@ TEST_CASE("single-precision kernel weights agree with double precision on a curv
     o.rangeUpdate = c.update;
     o.passes = c.passes;
     o.epsilon = 0.05;
-    o.singlePrecisionKernel = false;
+    o.tuning.singlePrecisionKernel = false;
     const MeanShiftResult twice = meanShift(geometry, *c.signal, o);
-    o.singlePrecisionKernel = true;
+    o.tuning.singlePrecisionKernel = true;
     const MeanShiftResult once = meanShift(geometry, *c.signal, o);
     const std::vector<double>& a = twice.signal.get(c.name).values;
     const std::vector<double>& b = once.signal.get(c.name).values;
@@ -427,21 +427,21 @@ TEST_CASE("kept charts change no result, and spare log maps", "[meanshift]") {
   MeanShiftOptions o;
   o.spatialBandwidth = 2;
   o.rangeBandwidth = 0.3;
-  o.chartDistortion = 0;  // cubes of h_s: more charts than a worker's own cache holds
+  o.tuning.chartDistortion = 0;  // cubes of h_s: more charts than a worker's own cache holds
   o.passes = 4;
   o.parallel.threads = 1;  // the counts of log maps depend on which worker climbs what
   const MeanShiftResult kept = meanShift(geometry, noisy, o);
-  o.chartCacheBytes = 0;
+  o.tuning.chartCacheBytes = 0;
   const MeanShiftResult none = meanShift(geometry, noisy, o);
-  o.chartCacheBytes = 200000;  // some kept, the rest computed again
+  o.tuning.chartCacheBytes = 200000;  // some kept, the rest computed again
   const MeanShiftResult some = meanShift(geometry, noisy, o);
   for (const MeanShiftResult* r : {&none, &some}) {
     REQUIRE(r->signal.get("COLOR").values == kept.signal.get("COLOR").values);
     REQUIRE(r->iterations == kept.iterations);
   }
   // Every pass after the first reads every chart from what the first kept.
-  CHECK(kept.chartsComputed < 2 * none.chartsComputed / o.passes);
-  CHECK(kept.chartsComputed < some.chartsComputed);
-  UNSCOPED_INFO("charts computed: kept " << kept.chartsComputed << ", some " << some.chartsComputed << ", none "
-                                        << none.chartsComputed);
+  CHECK(kept.diagnostics.chartsComputed < 2 * none.diagnostics.chartsComputed / o.passes);
+  CHECK(kept.diagnostics.chartsComputed < some.diagnostics.chartsComputed);
+  UNSCOPED_INFO("charts computed: kept " << kept.diagnostics.chartsComputed << ", some " << some.diagnostics.chartsComputed << ", none "
+                                        << none.diagnostics.chartsComputed);
 }

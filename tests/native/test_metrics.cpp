@@ -1,4 +1,4 @@
-// Error metrics (ALGORITHMS.md §7): per-vertex RMS, MeshLab-style point-to-surface, normal angles.
+// Error metrics (docs/algorithms.md#noise-and-error-metrics): per-vertex RMS, MeshLab-style point-to-surface, normal angles.
 #include <catch2/catch.hpp>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Seeded synthetic noise (ALGORITHMS.md §0.5, §7).
+// Seeded synthetic noise (docs/algorithms.md#noise-and-error-metrics).
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Taubin λ|μ smoothing (ALGORITHMS.md §4).
+// Taubin λ|μ smoothing (docs/algorithms.md#taubin-smoothing).
 #include <catch2/catch.hpp>
 
 #include <algorithm>

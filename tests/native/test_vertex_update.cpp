@@ -1,4 +1,4 @@
-// Vertex update from target face normals (ALGORITHMS.md §3) and face normals from vertex normals.
+// Vertex update from target face normals (docs/algorithms.md#vertex-update) and face normals from vertex normals.
 #include <catch2/catch.hpp>
 
 #include <atomic>

@@ -16,7 +16,7 @@ import geoshift
 
 STUBS = Path(geoshift.__file__).with_name("__init__.pyi")
 OPTION_CLASSES = ["MeanShiftOptions", "ParallelOptions", "SignalChannel", "WaveletOptions", "TaubinOptions",
-                  "VertexUpdateOptions", "DenoiseOptions", "BilateralNormalOptions", "TerrainOptions"]
+                  "VertexUpdateOptions", "FaceNeighborhoodOptions", "PaperDenoiseOptions", "DenoiseOptions", "BilateralNormalOptions", "TerrainOptions"]
 
 
 def stub_defaults(tree, cls_name):
@@ -45,10 +45,13 @@ def test_mean_shift_takes_every_option_as_keyword():
 
 
 def test_options_from_keywords_nested_dicts_and_pickle():
-    o = geoshift.DenoiseOptions(passes=2, face_normals="mean", mean_shift={"range_bandwidth": 0.3, "threads": 1})
-    assert o.passes == 2 and o.face_normals == "mean"
-    assert o.mean_shift.range_bandwidth == 0.3 and o.mean_shift.parallel.threads == 1
-    assert o.mean_shift.range_kernel == "normal_similarity"  # the paper's denoising defaults stay
+    o = geoshift.DenoiseOptions(preset="paper", strength=1.5,
+                                paper={"passes": 2, "face_normals": "mean",
+                                       "mean_shift": {"range_bandwidth": 0.3, "threads": 1}})
+    assert o.preset == "paper" and o.strength == 1.5
+    assert o.paper.passes == 2 and o.paper.face_normals == "mean"
+    assert o.paper.mean_shift.range_bandwidth == 0.3 and o.paper.mean_shift.parallel.threads == 1
+    assert o.paper.mean_shift.range_kernel == "normal_similarity"  # the paper's denoising defaults stay
     assert pickle.loads(pickle.dumps(o)) == o
     m = geoshift.MeanShiftOptions(channels=[("_A", 2.0), {"attribute": "_B", "kernel": "gaussian"}])
     assert [c.attribute for c in m.channels] == ["_A", "_B"] and m.channels[0].range_bandwidth == 2.0

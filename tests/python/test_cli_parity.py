@@ -77,7 +77,7 @@ def test_denoise_matches_cli(cli, tmp_path, terrain):
     noisy.z_up = False
     geoshift.write(noisy, tmp_path / "noisy.obj")
     cli("denoise", tmp_path / "noisy.obj", "-o", tmp_path / "cli.obj", "--passes", 2)
-    r = geoshift.denoise(geoshift.read(tmp_path / "noisy.obj").mesh, passes=2)
+    r = geoshift.denoise(geoshift.read(tmp_path / "noisy.obj").mesh, fixed_passes=2)
     geoshift.write(r.mesh, tmp_path / "py.obj")
     np.testing.assert_array_equal(geoshift.read(tmp_path / "cli.obj").mesh.positions,
                                   geoshift.read(tmp_path / "py.obj").mesh.positions)

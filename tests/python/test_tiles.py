@@ -172,10 +172,10 @@ def test_batch_of_files_one_task_a_file(client, tmp_path, terrain):
         geoshift.write(m, src / f"scan{i}.obj")
         meshes.append(geoshift.read(src / f"scan{i}.obj").mesh)
     done = tiles.batch(sorted(str(p) for p in src.iterdir()), str(tmp_path / "out"), client,
-                       denoise_options={"passes": 1})
+                       denoise_options={"fixed_passes": 1})
     assert len(done) == 3
     for i, m in enumerate(meshes):
-        expected = geoshift.denoise(m, passes=1).mesh.positions
+        expected = geoshift.denoise(m, fixed_passes=1).mesh.positions
         got = geoshift.read(tmp_path / "out" / f"scan{i}.obj").mesh.positions
         np.testing.assert_allclose(got, expected, rtol=1e-6, atol=1e-6)  # OBJ keeps ~7 digits
     (src / "broken.obj").write_text("v 0 0 0\nv 1 0 0\nf 1 2 3\n")

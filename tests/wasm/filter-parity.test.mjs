@@ -209,3 +209,22 @@ test('progress is reported by stage, and a cancelled filter or denoise changes n
   assert.ok(sameBits(geoshift.run(handle, 'noise', { amount: 0 }).positions, before), 'positions moved');
   geoshift.freeMesh(handle);
 });
+
+test('presets() are the CLI\'s --preset values: each, as filter parameters, gives what `geoshift filter --preset` gives', () => {
+  const presets = geoshift.presets();
+  assert.deepEqual(presets.map((p) => p.name), ['color', 'curvature-ms', 'curvature-bms', 'terrain-ms', 'terrain-bms']);
+  const off = path.join(dir, 'colored.off');
+  writeCoff(off, colored);
+  for (const p of presets.filter((p) => p.signal === 'color' || p.signal === 'curvature')) {
+    const { name, description, signal, ...params } = p;
+    assert.ok(description.length > 0, name);
+    const handle = load(geoshift, colored);
+    const r = geoshift.run(handle, 'filter', { signal, ...params });
+    geoshift.freeMesh(handle);
+    assert.equal(r.ok, true, `${name}: ${r.error}`);
+    assert.equal(r.stats.passes, p.passes, name);
+    const native = runNative(dir, 'filter', off, ['--preset', name]);
+    if (signal === 'color') assertClose(assert, r.colors, native('COLOR_0'), `${name} colors`);
+    else assertClose(assert, r.scalars._CURVATURE, native('_CURVATURE'), `${name} curvature`);
+  }
+});

@@ -31,6 +31,13 @@ export interface FilterElements {
 
 const count = new Intl.NumberFormat('en-US');
 
+/** What a run left: its report when it succeeded, its message when not, and its progress events. */
+export interface RunLog {
+  report: RunReport | null;
+  error: string | null;
+  progressEvents: ProgressEvent[];
+}
+
 export class FilterControls {
   private model: LoadedModel | null = null;
   private fileName = '';
@@ -40,10 +47,7 @@ export class FilterControls {
   private noiseSeed = 1;
   /** What the error figure is measured against: the mesh before noise, or a clean original. */
   private referenceName = 'before noise';
-  /** For the tests: the last finished run, and every progress event of the current/last run. */
-  lastReport: RunReport | null = null;
-  lastError: string | null = null;
-  progressEvents: ProgressEvent[] = [];
+  private log: RunLog = { report: null, error: null, progressEvents: [] };
   private current: Promise<void> = Promise.resolve();
   /** Takes a live preview off screen before what must not see it (revert, export, a new file). */
   previewGuard: (reason: 'revert' | 'export' | 'model') => void = () => undefined;
@@ -89,7 +93,7 @@ export class FilterControls {
     this.states = meshStates(model.meshes);
     this.el.beforeToggle.checked = false;
     this.el.split.value = '0';
-    this.lastReport = null;
+    this.log.report = null;
     this.showMetrics(null);
     this.scalars.setStates(this.states);
     this.panel.setScalarChoices(this.scalarChoices());
@@ -118,9 +122,9 @@ export class FilterControls {
     return this.current;
   }
 
-  /** Positions of every mesh (tests compare builds and exports with them). */
-  positions(): Float32Array[] {
-    return this.states.map((s) => Float32Array.from(s.mesh.geometry.getAttribute('position').array as ArrayLike<number>));
+  /** What the last run left (read by the test hooks, test-hooks.ts). */
+  get runLog(): Readonly<RunLog> {
+    return this.log;
   }
 
   /** The meshes of the file on screen, with their states (the live preview works on them). */
@@ -146,8 +150,8 @@ export class FilterControls {
     if (this.busy || this.states.length === 0) return this.current;
     this.busy = true;
     this.cancelRequested = false;
-    this.lastError = null;
-    this.progressEvents = [];
+    this.log = { report: null, error: null, progressEvents: [] };
+    const log = this.log;
     this.updateButtons();
     this.progress.start(preset.name);
     this.status.working(`${preset.name}: running on ${this.fileName}…`);
@@ -155,18 +159,18 @@ export class FilterControls {
     const task = async () => {
       try {
         const report = await runOnMeshes(this.client, states, preset, params, (event) => {
-          this.progressEvents.push(event);
+          log.progressEvents.push(event);
           this.progress.update(event.fraction, event.stage, event.stageFraction);
         }, () => this.cancelRequested);
         if (states !== this.states) return; // another file was opened meanwhile
-        this.lastReport = report;
+        log.report = report;
         this.afterRun(preset, report, params.segments === true);
         this.onFinished(report);
       } catch (error) {
         this.onFinished(null);
-        this.lastError = describeRunFailure(error);
-        this.progress.idle(this.lastError);
-        this.status.error(`${preset.name}: ${this.lastError}`);
+        log.error = describeRunFailure(error);
+        this.progress.idle(log.error);
+        this.status.error(`${preset.name}: ${log.error}`);
       } finally {
         this.busy = false;
         this.updateButtons();
@@ -200,7 +204,7 @@ export class FilterControls {
     for (const state of this.states) revert(state);
     this.scalars.setStates(this.states);
     this.viewer.geometryChanged();
-    this.lastReport = null;
+    this.log.report = null;
     this.showMetrics(null);
     this.updateComparison();
     this.updateButtons();
@@ -258,6 +262,13 @@ export class FilterControls {
       rows.push(['Time', `${(report.wallMs / 1000).toFixed(2)} s (${(report.computeMs / 1000).toFixed(2)} s computing)`]);
       rows.push(['Vertices', `${count.format(report.vertices)}${report.meshes > 1 ? ` in ${report.meshes} meshes` : ''}`]);
       if (report.iterations !== null) rows.push(['Iterations', count.format(report.iterations)]);
+      const estimate = report.stats.find((st) => typeof st.noiseLevel === 'number');
+      if (estimate) {
+        const level = (estimate.noiseLevel as number).toPrecision(2);
+        rows.push(['Noise level', `${level} × AEL${estimate.noiseEstimated === 'yes' ? ' (measured on the mesh)' : ''}`]);
+        if (typeof estimate.presmoothingSteps === 'number')
+          rows.push(['Chosen', `${estimate.presmoothingSteps} Taubin steps + ${estimate.passes} passes`]);
+      }
       if (report.error) {
         const pct = (v: number) => `${((100 * v) / Math.max(report.error!.diagonal, 1e-30)).toFixed(3)}%`;
         rows.push([`Error vs. ${this.referenceName}`, `${report.error.rms.toPrecision(3)} RMS (${pct(report.error.rms)} of the size)`]);

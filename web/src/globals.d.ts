@@ -1,4 +1,4 @@
-// Hooks for the end-to-end tests (tests/e2e), set by main.ts.
+// Hooks for the end-to-end tests (tests/e2e), set by test-hooks.ts: the one test interface.
 
 interface GeoshiftTestHooks {
   /** Resolves once the startup sample has been loaded (or failed to) and drawn. */

@@ -16,6 +16,7 @@ import { ParameterPanel } from './panel';
 import { ProgressBar } from './progress-bar';
 import { ScalarView } from './scalar-view';
 import { StatusLine } from './status';
+import { installFailedTestHooks, installTestHooks } from './test-hooks';
 import { ViewModeControl } from './view-mode-control';
 import { Viewer } from './viewer';
 import { WorkerClient } from './worker/client';
@@ -42,8 +43,7 @@ function start(): Promise<void> {
   } catch (error) {
     console.error(error);
     status.error('This browser cannot show 3D graphics (WebGL is unavailable or disabled).');
-    window.__geoshift = { ready: Promise.resolve(), stats: () => null, settled: () => Promise.resolve() } as unknown as Window['__geoshift'];
-    return window.__geoshift.ready;
+    return installFailedTestHooks();
   }
   const legend = new Legend(element('legend', HTMLElement));
   const scalars = new ScalarView(element('scalar-select', HTMLSelectElement), legend, () => viewer.geometryChanged());
@@ -102,6 +102,7 @@ function start(): Promise<void> {
 
   const workerReady = client.ready().then(
     (info) => {
+      panel.setCorePresets(info.presets);
       panel.setAvailableOps(info.ops);
       filters.refresh();
       return info;
@@ -175,41 +176,18 @@ function start(): Promise<void> {
     .then(() => (app.stats() ? undefined : openSample()))
     .then(() => hashSync.replace())
     .then(() => app.settled());
-  window.__geoshift = {
+  installTestHooks({
     ready,
-    stats: () => app.stats(),
-    settled: async () => {
-      await live.idle();
-      await filters.idle();
-      await app.settled();
-    },
-    workerReady: () => workerReady,
-    setParam: (key: string, value: unknown) => panel.set(key, value),
-    idle: () => filters.idle(),
-    lastRun: () => filters.lastReport,
-    lastError: () => filters.lastError,
-    progressEvents: () => filters.progressEvents.slice(),
-    positions: () => filters.positions().map((p) => Array.from(p)),
-    scalar: (name: string) =>
-      filters.meshes().map((mesh) => {
-        const a = mesh.geometry.getAttribute(name);
-        return a ? Array.from(a.array as ArrayLike<number>) : null;
-      }),
-    // Base64: bytes as a JSON array of numbers would be several times larger to pass to a test.
-    exportGlb: async () => base64(new Uint8Array(await filters.exportBytes())),
-    camera: () => viewer.cameraState(),
-    upAxis: () => upAxis.axis(),
-    params: () => ({ preset: panel.preset().id, params: panel.params() }),
-    previewEvents: () => live.events.slice(),
-    snapshot: async () => base64(new Uint8Array(await (await snapshot()).arrayBuffer())),
-  };
+    app,
+    filters,
+    panel,
+    workerReady,
+    viewer,
+    upAxis,
+    live,
+    snapshot: async () => new Uint8Array(await (await snapshot()).arrayBuffer()),
+  });
   return ready;
-}
-
-function base64(bytes: Uint8Array): string {
-  let binary = '';
-  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
-  return btoa(binary);
 }
 
 void start();

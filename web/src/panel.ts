@@ -3,7 +3,8 @@
 // switching back and forth keeps what the user typed.
 
 import GUI from 'lil-gui';
-import { PRESETS, paramsOf, presetById, type Param, type Preset } from './presets';
+import type { FilterPreset } from '../../wasm/geoshift';
+import { PRESETS, applyCorePresets, hasValues, paramsOf, presetById, type Param, type Preset } from './presets';
 import { HEIGHT } from './runner';
 import { orderSignals } from './signal-order';
 
@@ -79,7 +80,14 @@ export class ParameterPanel {
   }
 
   isAvailable(preset: Preset): boolean {
-    return !this.available || this.available.has(preset.op);
+    return hasValues(preset) && (!this.available || this.available.has(preset.op));
+  }
+
+  /** Takes the filter presets' values from the module (they are the core's: one table for all). */
+  setCorePresets(core: FilterPreset[]): void {
+    applyCorePresets(core);
+    for (const preset of PRESETS) if (preset.core) this.values.delete(preset.id);
+    this.build();
   }
 
   setScalarChoices(names: string[]): void {
@@ -147,7 +155,13 @@ export class ParameterPanel {
     const preset = this.preset();
     this.summary.textContent = this.isAvailable(preset)
       ? preset.summary
-      : `${preset.summary} This build of the WebAssembly module does not include the "${preset.op}" operation yet.`;
+      : !hasValues(preset)
+        ? `${preset.summary} Its settings arrive with the filters, which are starting.`
+        : `${preset.summary} This build of the WebAssembly module does not include the "${preset.op}" operation yet.`;
+    if (!hasValues(preset)) {
+      this.gui = null;
+      return;
+    }
     const values = this.valuesOf(preset);
     const gui = new GUI({ container: this.container, title: `${preset.name} parameters`, width: 300 });
     if (preset.needsScalar) {
@@ -155,7 +169,14 @@ export class ParameterPanel {
       c.domElement.title = `The per-vertex value to smooth: one from the file, or ${HEIGHT}, the height of each vertex along the mesh's thinnest axis.`;
       c.domElement.dataset.param = 'signal';
     }
-    for (const param of preset.params) addController(gui, values, param);
+    for (const param of preset.params.filter((p) => !p.expert)) addController(gui, values, param);
+    const expertParams = preset.params.filter((p) => p.expert);
+    if (expertParams.length) {
+      const folder = gui.addFolder('Expert settings');
+      for (const param of expertParams) addController(folder, values, param);
+      folder.close();
+    }
+    // Changes in the folder reach the GUI's handlers too (lil-gui passes them up).
     gui.onChange(() => this.notify(this.sliding ? 'slide' : 'input'));
     gui.onFinishChange(() => {
       const released = this.sliding;

@@ -1,6 +1,9 @@
 // The presets of the side panel: which op each runs and every parameter it sends, with the unit
-// and a plain-words explanation shown as a tooltip. Values follow ALGORITHMS.md §0.4 (the paper's
-// settings). Spatial parameters are multiples of the mesh's average edge length (AEL).
+// and a plain-words explanation shown as a tooltip. Spatial parameters are multiples of the mesh's
+// average edge length (AEL). The values of the filter presets are the core's (filterPresets(),
+// docs/algorithms.md#presets), read from the module when it starts (applyCorePresets).
+
+import type { FilterPreset } from '../../wasm/geoshift';
 
 export interface NumberParam {
   key: string;
@@ -32,7 +35,10 @@ export interface FlagParam {
   tooltip: string;
 }
 
-export type Param = NumberParam | ChoiceParam | FlagParam;
+export type Param = (NumberParam | ChoiceParam | FlagParam) & {
+  /** Folded away under "Expert settings" in the panel. */
+  expert?: boolean;
+};
 
 export interface Preset {
   id: string;
@@ -50,9 +56,16 @@ export interface Preset {
   showsScalar?: string;
   /** The scalar signal the op reads, chosen from the mesh's scalar attributes (Terrain). */
   needsScalar?: boolean;
+  /** The core's filter preset whose values its parameters take (applyCorePresets). */
+  core?: string;
 }
 
 const AEL = '× AEL';
+/** The value of a parameter that the module gives (applyCorePresets). */
+const CORE = Number.NaN;
+
+/** A parameter shown in the preset's folded "Expert settings". */
+const expert = <P extends Param>(p: P): P => ({ ...p, expert: true });
 
 const num = (key: string, label: string, unit: string, value: number, min: number, max: number, step: number, tooltip: string): NumberParam => ({
   key, kind: 'number', label, unit, value, min, max, step, tooltip,
@@ -64,16 +77,17 @@ const hs = (v: number) => num('hs', 'Spatial bandwidth h_s', AEL, v, 0.25, 20, 0
 const kmax = (v: number) => num('kmax', 'Max iterations k_max', '', v, 1, 500, 1, 'Upper limit on mean shift steps per point; points usually settle sooner.');
 const eps = (v: number) => num('eps', 'Convergence ε', AEL, v, 0.01, 2, 0.01, 'A point stops moving once a step is shorter than this.');
 const passes = (v: number) => num('passes', 'Passes', '', v, 1, 50, 1, 'How many times the filter is applied in a row (blurring mean shift uses several).');
-const mode = (v: 'ms' | 'bms'): ChoiceParam => ({
-  key: 'mode', kind: 'choice', label: 'Algorithm', value: v,
+// The mode and the value update of the filter presets come from the module ('' until then).
+const mode = (): ChoiceParam => ({
+  key: 'mode', kind: 'choice', label: 'Algorithm', value: '',
   options: { 'Mean shift (MS)': 'ms', 'Blurring mean shift (BMS)': 'bms' },
   tooltip: 'Mean shift keeps the input fixed while points climb to the nearest mode; blurring mean shift updates the signal after every pass (smoother, faster to flatten).',
 });
-const rangeUpdate: ChoiceParam = {
-  key: 'rangeUpdate', kind: 'choice', label: 'Value update', value: 'joint',
+const rangeUpdate = (): ChoiceParam => ({
+  key: 'rangeUpdate', kind: 'choice', label: 'Value update', value: '',
   options: { 'Joint (moves with the point)': 'joint', 'Sampled (the paper)': 'sampled' },
   tooltip: 'How a point\'s value follows it: its own mean shift step (smooths evenly sampled signals better) or read from the surface where the point is (the paper).',
-};
+});
 const segments: FlagParam = {
   key: 'segments', kind: 'flag', label: 'Also find segments', value: false,
   tooltip: 'Label vertices that end at the same mode with one number, and show the labels as segments.',
@@ -84,44 +98,47 @@ const alpha = (v: number) => num('alpha', 'Detail gain α', '', v, 0, 2, 0.05, '
 export const PRESETS: Preset[] = [
   {
     id: 'denoise', name: 'Denoise', op: 'denoise',
-    summary: 'Removes scanner noise from the surface while keeping sharp edges and corners.',
+    summary: 'Removes scanner noise from the surface while keeping sharp edges and corners. Auto measures the noise on the mesh and picks how much to smooth.',
     fixed: { method: 'meanshift' },
     params: [
-      radius(4), hs(3),
-      num('hr', 'Feature preservation h_r', 'normal dissimilarity', 0.45, 0.05, 2, 0.01, 'How different two normals may be and still be averaged. Smaller keeps more edges sharp.'),
-      kmax(50), eps(0.2), passes(3),
-      num('vertexIterations', 'Vertex update steps', '', 20, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.'),
-      levels(0), alpha(1),
+      num('strength', 'Strength', '× the noise', 1, 0.25, 4, 0.05, 'How hard to smooth, relative to the noise measured on the mesh (or given below). Above 1 smooths more, below 1 keeps more fine detail.'),
+      num('hr', 'Keep edges', 'normal tolerance', 0.35, 0.1, 1, 0.01, 'How different two surface directions may be and still be averaged. Smaller keeps more edges and corners sharp; larger smooths organic shapes more evenly.'),
+      num('noise', 'Noise level (0 = Auto)', AEL, 0, 0, 3, 0.01, 'How far the scan points scatter around the true surface. 0 measures it on the mesh; the result panel shows the value found.'),
+      expert(num('passes', 'Passes (0 = Auto)', '', 0, 0, 60, 1, 'Rounds of normal filtering and vertex update. 0 lets the risk estimate choose.')),
+      expert(num('radius', 'Neighbourhood radius r', AEL, 1.75, 0.5, 10, 0.05, 'How far around each face the normals are averaged.')),
+      expert(num('hs', 'Spatial bandwidth h_s', AEL, 0.6, 0.1, 5, 0.05, 'How quickly the influence of a neighbouring face fades with its distance.')),
+      expert(num('vertexIterations', 'Vertex update steps', '', 10, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.')),
+      expert(levels(0)), expert(alpha(1)),
     ],
   },
   {
-    id: 'smooth-colors', name: 'Smooth colors', op: 'filter', replacesColors: true,
+    id: 'smooth-colors', name: 'Smooth colors', op: 'filter', replacesColors: true, core: 'color',
     summary: 'Evens out blotchy vertex colors while keeping borders between differently colored regions.',
     fixed: { signal: 'color' },
     params: [
-      mode('ms'), hs(3),
-      num('hr', 'Color tolerance h_r', 'linear RGB', 0.1, 0.01, 1, 0.01, 'How different two colors may be and still be blended. Smaller keeps more borders.'),
-      radius(9), kmax(50), eps(0.2), passes(1), rangeUpdate, levels(0), alpha(1), segments,
+      mode(), hs(CORE),
+      num('hr', 'Color tolerance h_r', 'linear RGB', CORE, 0.01, 1, 0.01, 'How different two colors may be and still be blended. Smaller keeps more borders.'),
+      radius(CORE), kmax(CORE), eps(CORE), passes(CORE), rangeUpdate(), levels(CORE), alpha(CORE), segments,
     ],
   },
   {
-    id: 'filter-curvature', name: 'Filter curvature', op: 'filter', showsScalar: '_curvature',
+    id: 'filter-curvature', name: 'Filter curvature', op: 'filter', showsScalar: '_curvature', core: 'curvature-ms',
     summary: 'Smooths the absolute curvature of the surface, e.g. to find ridges and valleys robustly.',
     fixed: { signal: 'curvature' },
     params: [
-      mode('ms'), hs(3),
-      num('hr', 'Curvature tolerance h_r', '1 / length', 0.25, 0.01, 10, 0.01, 'How different two curvature values may be and still be averaged.'),
-      radius(9), kmax(50), eps(0.2), passes(1), rangeUpdate, levels(2), alpha(0), segments,
+      mode(), hs(CORE),
+      num('hr', 'Curvature tolerance h_r', '1 / length', CORE, 0.01, 10, 0.01, 'How different two curvature values may be and still be averaged.'),
+      radius(CORE), kmax(CORE), eps(CORE), passes(CORE), rangeUpdate(), levels(CORE), alpha(CORE), segments,
     ],
   },
   {
     // The filtered attribute comes back under its own name, the first scalar of the result.
-    id: 'terrain', name: 'Terrain', op: 'filter', needsScalar: true,
+    id: 'terrain', name: 'Terrain', op: 'filter', needsScalar: true, core: 'terrain-bms',
     summary: 'Smooths a per-vertex attribute of a terrain (height, vegetation height, class) along the ground.',
     params: [
-      mode('bms'), hs(5),
-      num('hr', 'Value tolerance h_r', 'attribute units', 5, 0.01, 1000, 0.01, 'How different two attribute values may be and still be averaged.'),
-      radius(15), kmax(5), eps(0.2), passes(10), rangeUpdate, levels(6), alpha(0), segments,
+      mode(), hs(CORE),
+      num('hr', 'Value tolerance h_r', 'attribute units', CORE, 0.01, 1000, 0.01, 'How different two attribute values may be and still be averaged.'),
+      radius(CORE), kmax(CORE), eps(CORE), passes(CORE), rangeUpdate(), levels(CORE), alpha(CORE), segments,
     ],
   },
   {
@@ -167,6 +184,30 @@ export const NOISE: Preset = {
   ],
   fixed: { distribution: 'fixed', direction: 'random' },
 };
+
+/**
+ * Gives the presets that follow a core preset its values (the module's presets()). Throws when the
+ * module lacks one of them or a value for one of their parameters.
+ */
+export function applyCorePresets(core: FilterPreset[], presets: Preset[] = PRESETS): void {
+  for (const preset of presets) {
+    if (!preset.core) continue;
+    const values = core.find((c) => c.name === preset.core) as Record<string, unknown> | undefined;
+    if (!values) throw new Error(`the module has no filter preset "${preset.core}"`);
+    for (const param of preset.params) {
+      if (param.kind === 'flag') continue;
+      const value = values[param.key];
+      if (typeof value !== typeof param.value) throw new Error(`the module's preset "${preset.core}" gives no ${param.key}`);
+      param.value = value as never;
+    }
+  }
+}
+
+/** Whether the preset's values are known (a core preset's arrive with the module). */
+export function hasValues(preset: Preset): boolean {
+  return preset.params.every((p) => p.kind !== 'number' || !Number.isNaN(p.value)) &&
+    preset.params.every((p) => p.kind !== 'choice' || p.value !== '');
+}
 
 export function presetById(id: string): Preset | undefined {
   return PRESETS.find((p) => p.id === id);

@@ -1,5 +1,5 @@
 #pragma once
-// Discrete curvatures as MeshLab's "Discrete Curvatures" filter computes them (ALGORITHMS.md §6).
+// Discrete curvatures as MeshLab's "Discrete Curvatures" filter computes them (docs/algorithms.md#curvature).
 #include <vector>
 
 #include "geoshift/mesh.hpp"

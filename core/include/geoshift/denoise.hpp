@@ -1,9 +1,15 @@
 #pragma once
-// Mesh denoising by Riemannian mean shift on vertex normals (the paper's §4.1; ALGORITHMS.md §0.4):
-// passes of [mean shift of the vertex normals with the kernel of eq. 8 → face normals → vertex
-// update], with log and exp maps on a Taubin-smoothed copy of the input (the support).
+// Mesh denoising (docs/denoising.md). Two pipelines share one entry point:
+//  - Default: blurring mean shift of the face normals over geodesic neighbourhoods, each pass
+//    followed by a vertex update; the noise level is estimated from the mesh and the amount of
+//    smoothing (Taubin pre-smoothing steps, number of passes) is chosen by Stein's unbiased risk
+//    estimate, so no setting depends on the mesh at hand or on a ground truth.
+//  - Paper: the paper's §4.1, passes of [mean shift of the vertex normals with the kernel of eq. 8 →
+//    face normals → vertex update] on a Taubin-smoothed support, kept to reproduce its figures.
+#include <cstdint>
 #include <vector>
 
+#include "geoshift/face_normal_shift.hpp"
 #include "geoshift/mean_shift.hpp"
 #include "geoshift/smoothing.hpp"
 #include "geoshift/vertex_update.hpp"
@@ -11,7 +17,9 @@
 
 namespace geoshift {
 
-// How a face's target normal comes from its three filtered vertex normals.
+enum class DenoisePreset { Default, Paper };
+
+// How a face's target normal comes from its three filtered vertex normals (paper preset).
 enum class FaceNormalRule {
   Mean,       // the paper's: their normalised mean. A face beside a crease averages the two sides
               // its corners took and the crease is bevelled (about 45° off on a box).
@@ -19,22 +27,17 @@ enum class FaceNormalRule {
               // exp(−|n_k − n_f|² / 2h_r²): a corner that took the other side of a crease drops out.
 };
 
-struct DenoiseOptions {
+struct PaperDenoiseOptions {
   int passes = 3;
   FaceNormalRule faceNormals = FaceNormalRule::Consensus;
   // Bandwidth of the consensus weights (chord length between unit normals); 0: the mean shift's h_r.
   double consensusBandwidth = 0.25;
-  // The mean shift of the normals. Defaults are the paper's: r = 4 AEL, h_s = 3 AEL, h_r = 0.45,
-  // k_max = 50, ε = AEL/5, kernel eq. 8 (set by denoise(); `channels` is ignored).
+  // The mean shift of the normals; `channels` is ignored. Defaults: the paper's r = 4 AEL,
+  // h_s = 3 AEL, h_r = 0.45, k_max = 50, ε = AEL/5, kernel eq. 8, the sampled range update
+  // (docs/denoising.md#the-paper-preset).
   MeanShiftOptions meanShift = paperMeanShift();
-  TaubinOptions support;            // smoothing of the support copy (MeshLab's 10 λ|μ steps)
-  // Hybrid denoising (Algorithm 2 on positions): analyse `levels` wavelet levels, denoise the coarse
-  // mesh, synthesise with detail gain `alpha` (one for all levels or one per level; 0 drops the
-  // fine details with their noise). The no-flip guarantee then holds on the coarse mesh.
-  int levels = 0;
-  std::vector<double> alpha = {0};
-  WaveletOptions wavelet;
-  VertexUpdateOptions vertexUpdate; // 20 iterations, no face ever flipped relative to the input
+  TaubinOptions support;             // smoothing of the support copy (MeshLab's 10 λ|μ steps)
+  VertexUpdateOptions vertexUpdate;  // 20 iterations, no face ever flipped relative to the input
 
   static MeanShiftOptions paperMeanShift() {
     MeanShiftOptions o;
@@ -44,26 +47,67 @@ struct DenoiseOptions {
     o.rangeKernel = RangeKernel::NormalSimilarity;
     o.maxIterations = 50;
     o.epsilon = 0.2;
-    // The paper's range update: on the evaluation (README, `npm run eval`) it beats the joint
-    // update on every Fandisk case (RMS 0.30 vs 0.39 ×10² at 0.5 AEL noise), whose eq. 8 kernel lets
-    // normals average across creases.
     o.rangeUpdate = RangeUpdate::Sampled;
     return o;
   }
 };
 
+struct DenoiseOptions {
+  DenoisePreset preset = DenoisePreset::Default;
+
+  // --- Default preset ---
+  // Noise level in average edge lengths (RMS displacement across the surface); 0: estimated from
+  // the mesh (estimateNoise).
+  double noiseLevel = 0;
+  // Multiplies the noise level the risk estimate assumes: above 1 smooths more, below 1 less.
+  double strength = 1;
+  // Candidate h_r of the face normal shift (chord length between unit normals): smaller keeps more
+  // edges, larger smooths organic shapes more evenly. The risk estimate picks one.
+  std::vector<double> rangeBandwidths = {0.35};
+  FaceNeighborhoodOptions neighborhood;  // r = 1.75 AEL, h_s = 0.6 AEL, on the support
+  TaubinOptions supportSmoothing;        // the support the neighbourhoods are found on (10 steps)
+  // Candidate Taubin steps before the passes; the risk estimate picks one (and its pass count).
+  std::vector<int> presmoothing = {2, 10};
+  int maxPasses = 40;
+  int patience = 4;         // stop a candidate after this many passes without a lower risk
+  int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
+  int vertexIterations = 10;
+  std::uint64_t seed = 1;   // of the risk estimate's random probe
+  int threads = 0;          // 0: all hardware threads; results do not depend on it
+
+  // --- Paper preset ---
+  PaperDenoiseOptions paper;
+
+  // --- Both: hybrid denoising (Algorithm 2 on positions) ---
+  // Analyse `levels` wavelet levels, denoise the coarse mesh, synthesise with detail gain `alpha`
+  // (one for all levels or one per level; 0 drops the fine details with their noise).
+  int levels = 0;
+  std::vector<double> alpha = {0};
+  WaveletOptions wavelet;
+};
+
 struct DenoiseResult {
+  // Default preset
+  double noiseLevel = 0;        // used, in average edge lengths (after `strength`)
+  bool noiseEstimated = false;  // from the mesh (noiseLevel option 0)
+  int presmoothingSteps = 0;    // chosen
+  double rangeBandwidth = 0;    // chosen
+  int passes = 0;               // chosen
+  int passesRun = 0;            // computed, all candidates
+  double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL
+  size_t neighborhoodBytes = 0;
+  // Paper preset
   double meanIterations = 0;     // of the mean shift, per vertex per pass
   double convergedFraction = 0;  // of the last pass
+  // Both
   int limitedSteps = 0;          // vertex-update steps the flip guard shortened, all passes
   int threads = 1;
   int filteredVertices = 0;      // the mesh's, or the coarse mesh's with levels > 0
   double seconds = 0;
 };
 
-// Moves the mesh's vertices. Throws InputError on bad options (as meanShift, taubinSmooth and
-// updateVertices do, or passes < 1) and on a mesh without faces; Cancelled through `progress`,
-// leaving the mesh as it was.
+// Moves the mesh's vertices. Throws InputError naming the option on bad options and on a mesh
+// without faces; Cancelled through `progress`, leaving the mesh as it was.
 DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options = {}, const Progress& progress = {});
 
 }  // namespace geoshift

@@ -1,7 +1,7 @@
 #pragma once
 // Geodesics on a triangle mesh: points on the surface, tangent frames, the log map by discrete
-// geodesic polar coordinates (Melvær–Reimers 2012; ALGORITHMS.md §1) and the exp map by straightest
-// geodesics (Polthier–Schmies 1998; §2).
+// geodesic polar coordinates (Melvær–Reimers 2012; docs/algorithms.md#log-map) and the exp map by straightest
+// geodesics (Polthier–Schmies 1998; docs/algorithms.md#exp-map).
 //
 // Tangent vectors are 2D coordinates in the frame of their base point, the same for log and exp:
 //  - at a vertex v: geodesic polar coordinates around v. Angle 0 lies along halfedge(v) (for a

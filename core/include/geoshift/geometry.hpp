@@ -26,7 +26,7 @@ std::vector<double> faceAreas(const Mesh& mesh);
 // Angle-weighted vertex normals (Thürmer–Wüthrich); zero for isolated vertices.
 std::vector<Vec3> vertexNormals(const Mesh& mesh);
 
-// Mixed Voronoi areas (Meyer et al. 2003, as MeshLab: ALGORITHMS.md §6); they sum to the total area.
+// Mixed Voronoi areas (Meyer et al. 2003, as MeshLab: docs/algorithms.md#curvature); they sum to the total area.
 std::vector<double> mixedVoronoiAreas(const Mesh& mesh);
 
 // Axis-aligned bounds of the positions (empty box for none).

@@ -1,6 +1,6 @@
 #pragma once
 // The hybrid filter of the paper's Algorithm 2: wavelet analysis to L levels, the mean shift on the
-// coarse mesh (far fewer vertices), synthesis with a detail gain α per level (ALGORITHMS.md §5).
+// coarse mesh (far fewer vertices), synthesis with a detail gain α per level (docs/algorithms.md#hybrid-filter).
 #include <vector>
 
 #include "geoshift/mean_shift.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 // Riemannian mean shift and blurring mean shift of vertex signals (the paper's Algorithm 1;
-// ALGORITHMS.md §0 and §8), with segmentation by modes.
+// docs/algorithms.md#mean-shift), with segmentation by modes.
 //
 // Every vertex i starts an iterate p at itself and climbs the density estimate
 //   f(p, y) = Σ_j k_s(d(p, x_j)² / h_s²) · Π_c k_r(dist_c(y_c, f_j,c)² / h_r,c²)
@@ -36,6 +36,28 @@ struct SignalChannel {
   RangeKernel kernel = RangeKernel::Gaussian;
 };
 
+// Speed and accuracy knobs of the climb's charts and kernel loop (docs/algorithms.md#charts,
+// #kernel-loop). None changes what is computed, only how closely and how fast; the tests and the
+// benchmarks set them, users need not.
+struct MeanShiftTuning {
+  // A fresh log map at every iteration (the paper's procedure; slow, the reference) instead of
+  // charts reused while the iterate stays near their centre.
+  bool exactCharts = false;
+  // How far (× r) an iterate may drift from its chart's centre before it takes another chart.
+  double recentre = 0.25;
+  // Side (× h_s) of the cubes whose vertices share one start chart; 0: a chart per vertex.
+  double chartCell = 1.0;
+  // Up to 4×4×4 cubes share one start chart while K·a² stays at most this (K the mean |Gaussian
+  // curvature| of their cubes, a the farthest offset from the chart's centre); 0: no merging.
+  double chartDistortion = 0.1;
+  // Bytes of charts that blurring passes keep between passes (and a quarter more shared between
+  // workers); 0 keeps none. Results are the same either way.
+  long long chartCacheBytes = 1LL << 30;
+  // Kernel weights in single precision (eight a vector, sums in double, within ~1e-7 relative);
+  // false: double precision throughout.
+  bool singlePrecisionKernel = true;
+};
+
 struct MeanShiftOptions {
   // The channels to filter; empty: every attribute of the signal, with rangeBandwidth and
   // rangeKernel below.
@@ -48,39 +70,20 @@ struct MeanShiftOptions {
   double epsilon = 0.2;         // stop when a step is at most this long
   int maxIterations = 50;       // k_max per pass
   int passes = 1;               // 1: mean shift; > 1: blurring mean shift
-  RangeUpdate rangeUpdate = RangeUpdate::Joint;  // see README: Sampled barely smooths evenly sampled signals
-  // Charts. false (default): one log map at the start vertex serves every iteration that stays
-  // within `recentre`·r of it, log_p(x_j) ≈ log_s(x_j) − log_s(p) (exact on developable surfaces),
-  // and the chart is recomputed at the iterate when it drifts further. true: a fresh log map at
-  // every iteration (the paper's procedure; slower).
-  bool exactCharts = false;
-  double recentre = 0.25;
-  // Vertices in one cube of this side (× h_s) also share the chart of the vertex nearest the
-  // cube's centre as their start chart (same approximation, with the start offset up to one side
-  // from the chart's centre); 0: every vertex computes its own.
-  double chartCell = 1.0;
-  // Where the surface is nearly flat, up to 4×4×4 such cubes (at most 200 vertices) share one
-  // start chart instead: while the mean Gaussian curvature K of their vertices (angle defects over
-  // area, taken per cube of chartCell so that a hill and a saddle do not cancel) keeps K·a² at most
-  // this, a = the farthest an iterate may start and drift from the chart's centre. A chart's
-  // distances are then off by about K·a²/6 relative. 0: cubes of chartCell only.
-  double chartDistortion = 0.1;
-  // Blurring passes keep their start charts between passes up to this many bytes (beyond, they
-  // compute them again each pass), and up to a quarter of it more keeps the charts that climbs
-  // computed (in one pass, those computed twice) for later climbs to copy instead of computing them
-  // again. Results are the same either way; 0 keeps none.
-  long long chartCacheBytes = 1LL << 30;
+  // Joint: the range value moves by its own mean shift step (docs/algorithms.md#range-update).
+  RangeUpdate rangeUpdate = RangeUpdate::Joint;
   // Samples weighted by their vertex area (a third of the adjacent faces' areas): the density is
-  // then one of the surface, not of the vertex sampling, so an iterate does not wander toward
-  // where the mesh happens to be finer (the paper weighs every vertex alike: false).
+  // then one of the surface, not of the vertex sampling (the paper weighs every vertex alike: false).
   bool areaWeighted = true;
-  // Kernel weights of the usual channel sets (Gaussian range kernels on up to 4 dimensions, or one
-  // normal-similarity channel) in single precision: eight a vector instead of four, about twice as
-  // fast a kernel loop, weights within ~1e-7 relative, sums still in double. Results are the same on
-  // every machine, thread count and in wasm either way. false: double precision throughout.
-  bool singlePrecisionKernel = true;
   bool segments = false;  // label vertices by their modes (MeanShiftResult::segment)
+  MeanShiftTuning tuning;
   ParallelOptions parallel;
+};
+
+// What the charts cost, for benchmarks and tests.
+struct MeanShiftDiagnostics {
+  int startCharts = 0;           // shared start charts (groups of vertices) per pass; 0 without chartCell
+  long long chartsComputed = 0;  // log maps computed for charts, all passes and threads
 };
 
 struct MeanShiftResult {
@@ -100,8 +103,7 @@ struct MeanShiftResult {
   double convergedFraction = 0;
   int threads = 1;
   double seconds = 0;
-  int startCharts = 0;  // shared start charts (groups of vertices) per pass; 0 without chartCell
-  long long chartsComputed = 0;  // log maps computed for charts, all passes and threads
+  MeanShiftDiagnostics diagnostics;
 };
 
 // Filters the signal over the support surface. The support's mesh gives the vertices, their

@@ -1,5 +1,5 @@
 #pragma once
-// Error metrics between a result and a reference (ALGORITHMS.md §7).
+// Error metrics between a result and a reference (docs/algorithms.md#noise-and-error-metrics).
 #include <vector>
 
 #include "geoshift/mesh.hpp"

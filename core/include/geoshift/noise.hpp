@@ -1,5 +1,5 @@
 #pragma once
-// Seeded synthetic noise for demos and the denoising benchmark (ALGORITHMS.md §0.5, §7).
+// Seeded synthetic noise for demos and the denoising benchmark (docs/algorithms.md#noise-and-error-metrics).
 // Uses its own generators (no std::*_distribution), so the same seed gives the same noise natively
 // and in wasm.
 #include <cstdint>
@@ -25,5 +25,24 @@ struct NoiseOptions {
 
 // Displaces every non-isolated vertex in place; returns the displacement per vertex.
 std::vector<Vec3> addNoise(Mesh& mesh, const NoiseOptions& options = {});
+
+}  // namespace geoshift
+
+namespace geoshift {
+
+// How noisy a mesh is, estimated from the mesh alone (docs/denoising.md#noise-estimate): at sampled
+// vertices a quadric height field is fitted to the two-ring in the frame of its best-fit plane, and
+// the residuals, corrected for the fit's own degrees of freedom, give the spread of positions across
+// the surface. Creases and corners, which a quadric cannot follow, are left out by averaging the
+// lower half of the per-vertex estimates (with the factor that makes that unbiased for Gaussian noise).
+struct NoiseEstimate {
+  double level = 0;    // RMS displacement across the surface, in multiples of the average edge length
+  double absolute = 0; // the same in the mesh's units
+  int samples = 0;     // vertices that contributed (interior, two-ring of at least 9 vertices)
+};
+
+// Deterministic and independent of threads. Uses at most `maxSamples` vertices spread evenly over
+// the index range. A mesh with no usable vertex gives level 0 and samples 0.
+NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples = 40000);
 
 }  // namespace geoshift

@@ -1,5 +1,5 @@
 #pragma once
-// The paper's parameter sets (ALGORITHMS.md §0.4) and ours, by name, for the CLI and the web app.
+// The paper's parameter sets (docs/algorithms.md#presets) and ours, by name, for the CLI and the web app.
 #include <string>
 #include <string_view>
 #include <vector>

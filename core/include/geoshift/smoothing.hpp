@@ -1,5 +1,5 @@
 #pragma once
-// Taubin λ|μ smoothing (Taubin 1995; ALGORITHMS.md §4).
+// Taubin λ|μ smoothing (Taubin 1995; docs/algorithms.md#taubin-smoothing).
 #include "geoshift/mesh.hpp"
 #include "geoshift/progress.hpp"
 

@@ -1,9 +1,10 @@
 #pragma once
-// Vertex positions from target face normals (Lee–Wang 2005; Sun et al. 2007; ALGORITHMS.md §3):
+// Vertex positions from target face normals (Lee–Wang 2005; Sun et al. 2007; docs/algorithms.md#vertex-update):
 // the second half of every normal-filtering denoiser.
 #include <vector>
 
 #include "geoshift/mesh.hpp"
+#include "geoshift/parallel.hpp"
 #include "geoshift/progress.hpp"
 
 namespace geoshift {
@@ -26,6 +27,8 @@ struct VertexUpdateOptions {
   // per face (a denoiser running several passes gives the normals of its own input, so that no
   // face ends up flipped against the mesh it was given, however many passes).
   std::vector<Vec3> referenceNormals;
+  // Threads of the per-face and per-vertex loops; results do not depend on them.
+  ParallelOptions parallel;
 };
 
 struct VertexUpdateResult {

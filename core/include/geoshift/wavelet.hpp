@@ -1,5 +1,5 @@
 #pragma once
-// Graph-wavelet multiresolution by lifting (ALGORITHMS.md §5): LOCAAT-style predict/update steps,
+// Graph-wavelet multiresolution by lifting (docs/algorithms.md#wavelets): LOCAAT-style predict/update steps,
 // batched over an independent set of vertices removed by half-edge collapses, level after level.
 //
 //   Multiresolution mr = analyze(mesh, attributes);            // coarse mesh + details

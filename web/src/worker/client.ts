@@ -6,6 +6,7 @@
 // worker and starts a new one; the run fails as cancelled at once. The page is the keeper of the
 // meshes (it loads the current geometry before each run), so a new worker loses nothing.
 
+import type { FilterPreset } from '../../../wasm/geoshift';
 import type { ErrorKind, LoadInfo, MeshArrays, Request, Response, RunOutput } from './protocol';
 import { isResponse, transferables } from './protocol';
 import { GeoshiftError } from './wasm-api';
@@ -16,6 +17,8 @@ export interface WorkerInfo {
   threaded: boolean;
   threads: number;
   ops: string[];
+  /** The core's filter presets, whose values the panel shows. */
+  presets: FilterPreset[];
 }
 
 export type ProgressListener = (fraction: number, stage: string) => void;
@@ -126,7 +129,7 @@ export class WorkerClient {
       if (!isResponse(message)) return;
       if (message.type === 'ready') {
         this.threaded = message.threaded;
-        settle.resolve({ threaded: message.threaded, threads: message.threads, ops: message.ops });
+        settle.resolve({ threaded: message.threaded, threads: message.threads, ops: message.ops, presets: message.presets });
       } else if (message.type === 'fatal') {
         const error = new GeoshiftError(message.message, 'internal');
         settle.reject(error);

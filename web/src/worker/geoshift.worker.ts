@@ -48,7 +48,7 @@ async function start(init: Init): Promise<void> {
     const flag = threaded && init.cancelFlag ? new Int32Array(init.cancelFlag) : undefined;
     engine = new Engine(api, post, flag ? { cancelFlag: flag } : {});
     const threads = threaded ? cores : 1;
-    post({ type: 'ready', threaded, threads, ops: api.ops() });
+    post({ type: 'ready', threaded, threads, ops: api.ops(), presets: api.presets() });
     for (const message of queued.splice(0)) receive(message);
   } catch (e) {
     post({ type: 'fatal', message: `the WebAssembly module ${name} could not start (${e instanceof Error ? e.message : String(e)})` });

@@ -1,7 +1,7 @@
 // The thin typed wrapper over the module: checks arguments at the JS edge and turns the module's
 // { ok: false, error } values into GeoshiftError, so callers use try/catch like any JS API.
 
-import type { Failure, GeoshiftModule, RunFailure, RunResult } from '../../../wasm/geoshift';
+import type { Failure, FilterPreset, GeoshiftModule, RunFailure, RunResult } from '../../../wasm/geoshift';
 import type { ErrorKind, LoadInfo, MeshArrays, RunOutput } from './protocol';
 
 export class GeoshiftError extends Error {
@@ -29,6 +29,11 @@ export class GeoshiftApi {
 
   ops(): string[] {
     return this.module.ops();
+  }
+
+  /** The core's filter presets: the one source of their values. */
+  presets(): FilterPreset[] {
+    return this.module.presets();
   }
 
   /** Copies the mesh into the module; returns its handle and what welding found. */

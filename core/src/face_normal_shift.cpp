@@ -1,0 +1,170 @@
+// faceNeighborhoods and shiftFaceNormals (face_normal_shift.hpp).
+#include "geoshift/face_normal_shift.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "geoshift/error.hpp"
+#include "mean_shift_detail.hpp"
+
+namespace geoshift {
+
+FaceNeighborhoods faceNeighborhoods(const SurfaceGeometry& support, const FaceNeighborhoodOptions& options,
+                                    const Progress& progress) {
+  if (!(options.radius > 0) || !std::isfinite(options.radius))
+    throw InputError("face neighbourhoods: radius must be > 0 (got " + std::to_string(options.radius) + ")");
+  if (!(options.spatialBandwidth > 0) || !std::isfinite(options.spatialBandwidth))
+    throw InputError("face neighbourhoods: spatial bandwidth must be > 0 (got " +
+                     std::to_string(options.spatialBandwidth) + ")");
+  const Mesh& mesh = support.mesh();
+  const int nf = mesh.faceCount(), nv = mesh.vertexCount();
+  const double ael = support.averageEdgeLength();
+  FaceNeighborhoods out;
+  out.radius = options.radius * ael;
+  out.spatialBandwidth = options.spatialBandwidth * ael;
+  const double reach = out.radius + ael;  // a face whose centroid is within r has its corners within r + AEL
+  const double k = 0.5 / (out.spatialBandwidth * out.spatialBandwidth);
+
+  // Faces in blocks: each block's rows are built in parallel into per-face buffers, then appended in
+  // face order, so the result does not depend on the threads and peak scratch stays one block.
+  constexpr int kBlock = 4096;
+  const int threads = resolveThreads(options.parallel.threads);
+  struct Scratch {
+    std::optional<LogMap> logMap;
+    std::vector<int> slot;       // vertex -> entry index in the current log map, or -1
+    std::vector<int> faceStamp;  // face -> the face whose neighbourhood last looked at it
+    std::vector<int> queue;
+  };
+  std::optional<LogMap> base;
+  if (options.geodesic) base.emplace(support);
+  std::vector<Vec3> centroids;
+  if (!options.geodesic) {
+    centroids.resize(nf);
+    for (int f = 0; f < nf; ++f) {
+      const Face& t = mesh.face(f);
+      centroids[f] = (mesh.position(t[0]) + mesh.position(t[1]) + mesh.position(t[2])) / 3;
+    }
+  }
+  std::vector<Scratch> scratch;
+  scratch.reserve(threads);
+  for (int t = 0; t < threads; ++t)
+    scratch.push_back({options.geodesic ? std::optional<LogMap>(base->fork()) : std::nullopt,
+                       std::vector<int>(options.geodesic ? nv : 0, -1), std::vector<int>(nf, -1), {}});
+  std::vector<std::vector<int>> rowFace(kBlock);
+  std::vector<std::vector<float>> rowWeight(kBlock);
+  out.start.reserve(nf + 1);
+  out.start.push_back(0);
+  for (int block = 0; block < nf; block += kBlock) {
+    const int count = std::min(kBlock, nf - block);
+    ParallelOptions par = options.parallel;
+    parallelFor(count, par, progress, "face neighbourhoods", static_cast<double>(block) / nf,
+                static_cast<double>(block + count) / nf, [&](int i, int worker) {
+      const int f = block + i;
+      Scratch& s = scratch[worker];
+      std::vector<int>& faces = rowFace[i];
+      std::vector<float>& weights = rowWeight[i];
+      faces.clear();
+      weights.clear();
+      faces.push_back(f);
+      weights.push_back(1.0f);
+      if (options.geodesic) {
+        const auto& entries = s.logMap->compute(SurfacePoint::inFace(mesh, f, Vec3::Constant(1.0 / 3.0)), reach);
+        for (size_t e = 0; e < entries.size(); ++e) s.slot[entries[e].vertex] = static_cast<int>(e);
+        s.faceStamp[f] = f;
+        for (const LogMapEntry& entry : entries) {
+          mesh.forEachOutgoing(entry.vertex, [&](int h) {
+            const int g = Mesh::faceOf(h);
+            if (s.faceStamp[g] == f) return;
+            s.faceStamp[g] = f;
+            Vec2 c = Vec2::Zero();
+            for (int w : mesh.face(g)) {
+              if (s.slot[w] < 0) return;
+              c += entries[s.slot[w]].coords();
+            }
+            const double d2 = (c / 3).squaredNorm();
+            if (d2 > out.radius * out.radius) return;
+            faces.push_back(g);
+            weights.push_back(static_cast<float>(mean_shift_detail::kernelExp(-d2 * k)));
+          });
+        }
+        for (const LogMapEntry& entry : entries) s.slot[entry.vertex] = -1;
+      } else {
+        // Faces reached from f across edges while their centroids stay within r of f's (straight
+        // distance on the support).
+        s.faceStamp[f] = f;
+        s.queue.assign(1, f);
+        for (size_t q = 0; q < s.queue.size(); ++q) {
+          const int a = s.queue[q];
+          for (int k3 = 0; k3 < 3; ++k3) {
+            const int t = mesh.twin(3 * a + k3);
+            if (t < 0) continue;
+            const int g = Mesh::faceOf(t);
+            if (s.faceStamp[g] == f) continue;
+            s.faceStamp[g] = f;
+            const double d2 = (centroids[g] - centroids[f]).squaredNorm();
+            if (d2 > out.radius * out.radius) continue;
+            s.queue.push_back(g);
+            faces.push_back(g);
+            weights.push_back(static_cast<float>(mean_shift_detail::kernelExp(-d2 * k)));
+          }
+        }
+      }
+      // A fixed order within the row (the log map's order is deterministic too, but sorting makes the
+      // rows independent of it).
+      std::vector<int> order(faces.size() - 1);
+      for (size_t j = 0; j < order.size(); ++j) order[j] = static_cast<int>(j + 1);
+      std::sort(order.begin(), order.end(), [&](int a, int b) { return faces[a] < faces[b]; });
+      std::vector<int> sortedFaces{f};
+      std::vector<float> sortedWeights{1.0f};
+      for (int j : order) {
+        sortedFaces.push_back(faces[j]);
+        sortedWeights.push_back(weights[j]);
+      }
+      faces.swap(sortedFaces);
+      weights.swap(sortedWeights);
+    });
+    for (int i = 0; i < count; ++i) {
+      out.face.insert(out.face.end(), rowFace[i].begin(), rowFace[i].end());
+      out.spatialWeight.insert(out.spatialWeight.end(), rowWeight[i].begin(), rowWeight[i].end());
+      out.start.push_back(static_cast<int>(out.face.size()));
+    }
+  }
+  out.face.shrink_to_fit();
+  out.spatialWeight.shrink_to_fit();
+  return out;
+}
+
+std::vector<Vec3> shiftFaceNormals(const FaceNeighborhoods& hoods, const std::vector<double>& areas,
+                                   const std::vector<Vec3>& normals, double rangeBandwidth,
+                                   const ParallelOptions& parallel, const Progress& progress) {
+  const int nf = static_cast<int>(hoods.start.size()) - 1;
+  if (static_cast<int>(normals.size()) != nf || static_cast<int>(areas.size()) != nf)
+    throw InputError("face normal shift: " + std::to_string(normals.size()) + " normals and " +
+                     std::to_string(areas.size()) + " areas for " + std::to_string(nf) + " faces");
+  if (!(rangeBandwidth > 0) || !std::isfinite(rangeBandwidth))
+    throw InputError("face normal shift: range bandwidth must be > 0 (got " + std::to_string(rangeBandwidth) + ")");
+  const double k = 0.5 / (rangeBandwidth * rangeBandwidth);
+  std::vector<Vec3> out(nf);
+  ParallelOptions par = parallel;
+  par.chunk = 256;
+  parallelFor(nf, par, progress, "face normals", 0, 1, [&](int f, int) {
+    const Vec3& nf0 = normals[f];
+    if (nf0.squaredNorm() == 0) {
+      out[f] = nf0;
+      return;
+    }
+    Vec3 sum = Vec3::Zero();
+    for (int j = hoods.start[f]; j < hoods.start[f + 1]; ++j) {
+      const int g = hoods.face[j];
+      const double w = hoods.spatialWeight[j] * areas[g] * mean_shift_detail::kernelExp(-(normals[g] - nf0).squaredNorm() * k);
+      sum += w * normals[g];
+    }
+    const double len = sum.norm();
+    out[f] = len > 0 ? Vec3(sum / len) : nf0;
+  });
+  return out;
+}
+
+}  // namespace geoshift
