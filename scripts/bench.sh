@@ -24,6 +24,12 @@ echo
 echo "== wasm vs native: denoise (bench/wasm/denoise.mjs) =="
 node bench/wasm/denoise.mjs || echo "bench/wasm/denoise.mjs failed"
 
+# Live preview latency per mesh size (issue 21): preview() on coarse levels in Chromium (threads)
+# and Node (one thread); 30k to 1M vertices, a few minutes on 2 cores.
+echo
+echo "== live preview latency (bench/wasm/preview.mjs) =="
+node bench/wasm/preview.mjs || echo "bench/wasm/preview.mjs failed"
+
 # Tiled filtering on Dask (issue 20): terrain-bms on the autzen LiDAR and a 4M-vertex procedural
 # terrain with 1 and 2 workers (about 15 minutes on 2 cores).
 echo

@@ -34,6 +34,13 @@ emscripten::val run(int handle, const std::string& op, const emscripten::val& pa
 emscripten::val loadMeshWithoutExtras(const emscripten::val& positions, const emscripten::val& indices);
 emscripten::val runWithoutProgress(int handle, const std::string& op, const emscripten::val& params);
 
+// preview(handle, op, params, maxVertices, onProgress?): the op run on a coarse wavelet level of the
+// mesh (at most maxVertices vertices, analysed once and kept with the session) and brought back to
+// every vertex; returns what run returns, with stats.previewVertices, levels, analysisMs and
+// analysisReused, and leaves the session as it was (preview.cpp).
+emscripten::val preview(int handle, const std::string& op, const emscripten::val& params, int maxVertices, const emscripten::val& onProgress);
+emscripten::val previewWithoutProgress(int handle, const std::string& op, const emscripten::val& params, int maxVertices);
+
 // ops(): the names of the ops this build knows (the web app asks before offering a preset).
 emscripten::val listOps();
 

@@ -12,6 +12,8 @@ EMSCRIPTEN_BINDINGS(geoshift) {
   emscripten::function("freeMesh", &geoshift::wasm::freeMesh);
   emscripten::function("run", &geoshift::wasm::run);
   emscripten::function("run", &geoshift::wasm::runWithoutProgress);
+  emscripten::function("preview", &geoshift::wasm::preview);
+  emscripten::function("preview", &geoshift::wasm::previewWithoutProgress);
   emscripten::function("ops", &geoshift::wasm::listOps);
   emscripten::function("presets", &geoshift::wasm::listPresets);
 }

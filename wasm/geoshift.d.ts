@@ -184,6 +184,13 @@ export interface GeoshiftModule {
    * mesh keeps the new positions and signals, so ops chain (noise, then a filter).
    */
   run<Op extends OpName>(handle: number, op: Op, params: OpParams[Op], onProgress?: ProgressCallback): RunResult;
+  /**
+   * The op run on a coarse wavelet level of a kept mesh (at most maxVertices vertices), its outputs
+   * brought back to every vertex without the details: a quick look for a live preview. The level is
+   * analysed at the first call and reused while the mesh's positions and signals stay the same. The
+   * mesh is left as it was. Stats add previewVertices, levels, analysisMs and analysisReused.
+   */
+  preview<Op extends OpName>(handle: number, op: Op, params: OpParams[Op], maxVertices: number, onProgress?: ProgressCallback): RunResult;
   /** Names of the ops this build knows. */
   ops(): string[];
   /** The core's filter presets (the CLI's --preset), as parameters of the filter op. */

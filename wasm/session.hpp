@@ -4,6 +4,7 @@
 // costs the filter, not another weld. Positions and signals are updated when an op succeeds; a
 // failed or cancelled op leaves them as they were.
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,9 +13,13 @@
 
 namespace geoshift::wasm {
 
+struct PreviewCache;  // preview.cpp
+
 struct Session {
   MeshBuild build;         // the welded mesh; build.vertexOf maps caller vertices onto it
   AttributeSet attributes; // signals in the welded (mesh) layout
+  // The coarse level the live preview works on, made at the first preview (preview.cpp).
+  std::shared_ptr<PreviewCache> preview;
   int callerVertexCount() const { return static_cast<int>(build.vertexOf.size()); }
 };
 

@@ -143,7 +143,8 @@ export function torus(n = 48, m = 24, R = 1, r = 0.35) {
 
 /**
  * A GLB scene of several meshes, each in its own node (with a translation, to check the scene
- * survives export): meshes = [{ positions, normals?, indices }], plain arrays.
+ * survives export): meshes = [{ positions, normals?, indices, scalars? }], plain arrays; scalars
+ * maps custom attribute names (`_NAME`) to one number per vertex.
  */
 export function sceneGlb(meshes) {
   const parts = [];
@@ -164,6 +165,7 @@ export function sceneGlb(meshes) {
     const max = [0, 1, 2].map((k) => Math.max(...p.filter((_, i) => i % 3 === k)));
     const attributes = { POSITION: add(p, 5126, 'VEC3', p.length / 3, { min, max }) };
     if (mesh.normals) attributes.NORMAL = add(new Float32Array(mesh.normals), 5126, 'VEC3', p.length / 3);
+    for (const [name, values] of Object.entries(mesh.scalars ?? {})) attributes[name] = add(new Float32Array(values), 5126, 'SCALAR', values.length);
     const indices = add(new Uint32Array(mesh.indices), 5125, 'SCALAR', mesh.indices.length);
     return { primitives: [{ attributes, indices }] };
   });
@@ -209,4 +211,34 @@ export function parseGlb(buffer) {
     return out;
   };
   return { json, accessor };
+}
+
+/**
+ * A terrain as `geoshift terrain` writes it, Y-up: an n × n grid of hills with the attributes
+ * _HEIGHT_ABOVE_GROUND (a quantity) and _CLASS (a category), counter-clockwise seen from above.
+ */
+export function terrain(n = 24) {
+  const positions = [], indices = [], hag = [], cls = [];
+  for (let j = 0; j < n; j++) {
+    for (let i = 0; i < n; i++) {
+      const x = i / (n - 1) * 10, z = j / (n - 1) * 10;
+      positions.push(x, 0.6 * Math.sin(x) * Math.cos(z), z);
+      hag.push(i > n / 2 ? 2 + Math.cos(i + j) : 0);
+      cls.push(i > n / 2 ? 5 : 2);
+    }
+  }
+  const at = (i, j) => j * n + i;
+  // Seen from +Y (looking down -Y), x right and z down the screen: (i,j) -> (i,j+1) -> (i+1,j) is
+  // counter-clockwise.
+  for (let j = 0; j + 1 < n; j++) {
+    for (let i = 0; i + 1 < n; i++) indices.push(at(i, j), at(i, j + 1), at(i + 1, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1));
+  }
+  return sceneGlb([{ positions, indices, scalars: { _HEIGHT_ABOVE_GROUND: hag, _CLASS: cls } }]);
+}
+
+/** A square pyramid standing on its base in the z = 0 plane, apex up along +Z, as OFF text. */
+export function pyramidZUpOff() {
+  return 'OFF\n5 6 0\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n0 0 2.5\n' +
+    // Base seen from below (outward normal -Z), then the four sides.
+    '3 0 2 1\n3 0 3 2\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n';
 }

@@ -26,9 +26,10 @@ export const CHROMIUM = {
 /**
  * Starts server and browser before the file's tests and opens the app with its startup sample
  * loaded. The returned object is filled in by then: { url, page, pageErrors }. `query` is appended
- * to the page's URL (e.g. '?build=single' forces the single-threaded wasm build).
+ * to the page's URL (e.g. '?build=single' forces the single-threaded wasm build); `viewport` and
+ * `hasTouch` make a phone of it.
  */
-export function useApp({ query = '' } = {}) {
+export function useApp({ query = '', viewport = { width: 800, height: 540 }, hasTouch = false } = {}) {
   const app = { url: '', page: null, pageErrors: [] };
   let server = null;
   let browser = null;
@@ -46,7 +47,7 @@ export function useApp({ query = '' } = {}) {
     await server.listen();
     app.url = `http://127.0.0.1:${server.httpServer.address().port}/`;
     browser = await chromium.launch(CHROMIUM);
-    app.page = await browser.newPage({ viewport: { width: 800, height: 540 } });
+    app.page = await browser.newPage({ viewport, hasTouch });
     app.page.on('pageerror', (error) => app.pageErrors.push(error));
     await app.page.goto(app.url + query);
     await app.page.evaluate(() => window.__geoshift.ready);
@@ -88,7 +89,8 @@ export async function waitForStatusAbout(page, name) {
 
 /** Screenshots the 3D view into test-output/e2e/NAME.png and returns the decoded image. */
 export async function shoot(page, name) {
-  const png = await page.getByTestId('canvas').screenshot({ path: `${outputDir}${name}.png` });
+  // The view's buttons float over the canvas; they are not part of the picture.
+  const png = await page.getByTestId('canvas').screenshot({ path: `${outputDir}${name}.png`, style: '.view-tools { visibility: hidden; }' });
   return decodePng(png);
 }
 

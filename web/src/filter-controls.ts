@@ -45,8 +45,14 @@ export class FilterControls {
   private busy = false;
   private cancelRequested = false;
   private noiseSeed = 1;
+  /** What the error figure is measured against: the mesh before noise, or a clean original. */
+  private referenceName = 'before noise';
   private log: RunLog = { report: null, error: null, progressEvents: [] };
   private current: Promise<void> = Promise.resolve();
+  /** Takes a live preview off screen before what must not see it (revert, export, a new file). */
+  previewGuard: (reason: 'revert' | 'export' | 'model') => void = () => undefined;
+  /** Told when a run finished (null: failed or cancelled). */
+  onFinished: (report: RunReport | null) => void = () => undefined;
 
   constructor(
     private readonly el: FilterElements,
@@ -75,6 +81,7 @@ export class FilterControls {
   }
 
   setModel(model: LoadedModel, fileName: string): void {
+    this.previewGuard('model');
     for (const old of this.states) {
       old.before?.dispose();
       old.original.dispose();
@@ -82,6 +89,7 @@ export class FilterControls {
     }
     this.model = model;
     this.fileName = fileName;
+    this.referenceName = 'before noise';
     this.states = meshStates(model.meshes);
     this.el.beforeToggle.checked = false;
     this.el.split.value = '0';
@@ -91,6 +99,22 @@ export class FilterControls {
     this.panel.setScalarChoices(this.scalarChoices());
     this.updateComparison();
     this.updateButtons();
+  }
+
+  /**
+   * Gives the clean original of the noisy meshes on screen (same vertices, same order): every run
+   * then reports its error against it, as after Add noise. `name` completes "Error vs. …".
+   */
+  setReference(positions: Float32Array[], name: string): void {
+    if (positions.length !== this.states.length) throw new Error(`the clean original has ${positions.length} meshes, the file ${this.states.length}`);
+    this.states.forEach((state, i) => {
+      const p = positions[i]!;
+      const n = state.mesh.geometry.getAttribute('position').count;
+      if (p.length !== 3 * n) throw new Error(`the clean original of mesh ${i + 1} has ${p.length / 3} vertices, the mesh ${n}`);
+      state.reference = p;
+      state.preNoise = p;
+    });
+    this.referenceName = name;
   }
 
   /** Resolves when no run is in progress. */
@@ -103,12 +127,22 @@ export class FilterControls {
     return this.log;
   }
 
+  /** The meshes of the file on screen, with their states (the live preview works on them). */
+  meshStates(): MeshState[] {
+    return this.states;
+  }
+
+  isBusy(): boolean {
+    return this.busy;
+  }
+
   meshes(): Mesh[] {
     return this.states.map((s) => s.mesh);
   }
 
   async exportBytes(): Promise<ArrayBuffer> {
     if (!this.model) throw new Error('no model is open');
+    this.previewGuard('export');
     return exportGlb(this.model.root, this.model.meshes);
   }
 
@@ -131,7 +165,9 @@ export class FilterControls {
         if (states !== this.states) return; // another file was opened meanwhile
         log.report = report;
         this.afterRun(preset, report, params.segments === true);
+        this.onFinished(report);
       } catch (error) {
+        this.onFinished(null);
         log.error = describeRunFailure(error);
         this.progress.idle(log.error);
         this.status.error(`${preset.name}: ${log.error}`);
@@ -164,6 +200,7 @@ export class FilterControls {
 
   private revert(): void {
     if (this.busy) return;
+    this.previewGuard('revert');
     for (const state of this.states) revert(state);
     this.scalars.setStates(this.states);
     this.viewer.geometryChanged();
@@ -234,7 +271,7 @@ export class FilterControls {
       }
       if (report.error) {
         const pct = (v: number) => `${((100 * v) / Math.max(report.error!.diagonal, 1e-30)).toFixed(3)}%`;
-        rows.push(['Error vs. before noise', `${report.error.rms.toPrecision(3)} RMS (${pct(report.error.rms)} of the size)`]);
+        rows.push([`Error vs. ${this.referenceName}`, `${report.error.rms.toPrecision(3)} RMS (${pct(report.error.rms)} of the size)`]);
         rows.push(['Noisy input had', `${report.error.inputRms.toPrecision(3)} RMS (${pct(report.error.inputRms)})`]);
       }
     }

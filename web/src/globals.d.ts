@@ -25,6 +25,16 @@ interface GeoshiftTestHooks {
   scalar(name: string): Array<number[] | null>;
   /** The bytes Export would download, base64-encoded. */
   exportGlb(): Promise<string>;
+  /** The camera: position, orbit target and up, as [x, y, z]. */
+  camera(): { position: number[]; target: number[]; up: number[] };
+  /** The up axis in use ('+y', '+z', ...). */
+  upAxis(): string;
+  /** The current preset's id and the parameters a run would send. */
+  params(): { preset: string; params: Record<string, unknown> };
+  /** Every live preview and full result put on screen since the page opened, in order. */
+  previewEvents(): Array<{ kind: 'preview' | 'full'; at: number; vertices: number; ms: number }>;
+  /** The PNG the Snapshot button saves, base64-encoded. */
+  snapshot(): Promise<string>;
 }
 
 interface Window {

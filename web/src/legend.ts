@@ -1,6 +1,6 @@
 // The color legend of scalar-field mode: the field's name, the color ramp and its value range.
 
-import { cssGradient, type ScalarRange } from './colormap';
+import { colorAt, cssGradient, type ScalarRange } from './colormap';
 
 const LABELS: Record<string, string> = {
   _curvature: 'Curvature',
@@ -14,7 +14,18 @@ export function scalarLabel(name: string): string {
 
 const format = (v: number) => (Math.abs(v) >= 1000 || (Math.abs(v) < 0.01 && v !== 0) ? v.toExponential(2) : v.toPrecision(3));
 
+/** What the legend shows, for drawing it into a snapshot. */
+export interface LegendContent {
+  title: string;
+  low: string;
+  high: string;
+  /** sRGB colors of the ramp from left to right, [0, 1] each. */
+  ramp: Array<[number, number, number]>;
+}
+
 export class Legend {
+  private content: LegendContent | null = null;
+
   constructor(private readonly element: HTMLElement) {
     element.hidden = true;
   }
@@ -39,9 +50,23 @@ export class Legend {
     ends.append(low, high);
     this.element.append(title, ramp, ends);
     this.element.dataset.scalar = name;
+    this.content = {
+      title: title.textContent ?? '',
+      low: low.textContent ?? '',
+      high: high.textContent ?? '',
+      ramp: Array.from({ length: 11 }, (_, i) =>
+        range.kind === 'categorical' ? colorAt(range, i) : colorAt(range, range.min + ((range.max - range.min) * i) / 10),
+      ),
+    };
   }
 
   hide(): void {
     this.element.hidden = true;
+    this.content = null;
+  }
+
+  /** The legend on screen, or null when hidden. */
+  shown(): LegendContent | null {
+    return this.element.hidden ? null : this.content;
   }
 }

@@ -3,6 +3,13 @@
 import './style.css';
 import { App } from './app';
 import { installDropZone } from './dropzone';
+import { Gallery } from './gallery';
+import { decodeState, HashSync } from './hash-state';
+import { installShortcuts } from './keyboard';
+import { LivePreview } from './live-preview';
+import { installSheet } from './sheet';
+import { saveBlob, snapshotName, snapshotPng } from './snapshot';
+import { axisVector, UpAxisControl } from './up-axis';
 import { FilterControls } from './filter-controls';
 import { Legend } from './legend';
 import { ParameterPanel } from './panel';
@@ -71,7 +78,27 @@ function start(): Promise<void> {
     scalars,
     status,
   );
-  const app = new App(viewer, status, viewMode, (model, fileName) => filters.setModel(model, fileName));
+  const live = new LivePreview({
+    client,
+    filters,
+    panel,
+    viewer,
+    scalars,
+    viewMode,
+    kind: element('result-kind', HTMLElement),
+    enabled: element('live-preview', HTMLInputElement),
+  });
+  const upAxis = new UpAxisControl(element('up-axis-select', HTMLSelectElement), (axis) => viewer.setUp(axisVector(axis)));
+  const app = new App(viewer, status, viewMode, (model, fileName) => {
+    upAxis.modelChanged(model.meshes, fileName);
+    filters.setModel(model, fileName);
+  });
+  const snapshot = () =>
+    snapshotPng(viewer, {
+      viewport: element('viewport', HTMLElement),
+      legend: { element: element('legend', HTMLElement), content: legend.shown() },
+      splitLine: element('split-line', HTMLElement),
+    });
 
   const workerReady = client.ready().then(
     (info) => {
@@ -92,10 +119,18 @@ function start(): Promise<void> {
     const file = input.files?.[0];
     // Cleared so that choosing the same file again (after editing it elsewhere) fires 'change'.
     input.value = '';
-    if (file) void app.openFile(file);
+    if (file) openOwn(file);
   });
-  installDropZone(document.body, element('drop-overlay', HTMLElement), (file) => void app.openFile(file));
+  installDropZone(document.body, element('drop-overlay', HTMLElement), (file) => openOwn(file));
   element('reset-view', HTMLButtonElement).addEventListener('click', () => viewer.fitToView());
+  element('snapshot-button', HTMLButtonElement).addEventListener('click', () => {
+    snapshot().then(
+      (png) => saveBlob(png, snapshotName(app.stats()?.file ?? 'geoshift')),
+      (error: unknown) => status.error(`Could not take a snapshot: ${error instanceof Error ? error.message : String(error)}`),
+    );
+  });
+  installShortcuts(element('run-button', HTMLButtonElement), element('cancel-button', HTMLButtonElement));
+  installSheet(element('panel-toggle', HTMLButtonElement));
   // Alt+click picks the source vertex of the geodesic distance.
   viewer.canvas.addEventListener('click', (event) => {
     if (!event.altKey || panel.preset().op !== 'geodesic') return;
@@ -103,8 +138,55 @@ function start(): Promise<void> {
     if (hit) panel.set('source', hit.vertex);
   });
 
-  const ready = app.openUrl(SAMPLE.url, SAMPLE.name).then(() => app.settled());
-  installTestHooks({ ready, app, filters, panel, workerReady });
+  const gallery: Gallery = new Gallery(element('gallery', HTMLElement), element('gallery-hint', HTMLElement), {
+    app,
+    panel,
+    filters,
+    base: `${import.meta.env.BASE_URL}gallery/`,
+    onOpened: () => hashSync.write(true),
+    onError: (message) => status.error(message),
+  });
+  let sampleShown = false;
+  const openSample = async () => {
+    gallery.leave();
+    await app.openUrl(SAMPLE.url, SAMPLE.name);
+    sampleShown = app.stats()?.file === SAMPLE.name;
+  };
+  const hashSync = new HashSync({
+    panel,
+    up: upAxis,
+    caseId: () => gallery.current(),
+    ownFile: () => gallery.current() === null && !sampleShown,
+    openCase: (id) => (id === null ? openSample() : gallery.open(id)),
+    onIgnored: (message) => status.error(message),
+  });
+  element('up-axis-select', HTMLSelectElement).addEventListener('change', () => hashSync.write(true));
+  const openOwn = (file: File) => {
+    gallery.leave();
+    sampleShown = false;
+    void app.openFile(file).then(() => hashSync.write(true));
+  };
+
+  // A link to a gallery case opens the case (restore below); any other page starts with the sample.
+  const linkedCase = decodeState(location.hash).caseId;
+  const ready = (linkedCase ? Promise.resolve() : openSample())
+    // The presets' availability is known once the worker is up; a link may name any preset.
+    .then(() => workerReady.catch(() => undefined))
+    .then(() => hashSync.restore(location.hash))
+    .then(() => (app.stats() ? undefined : openSample()))
+    .then(() => hashSync.replace())
+    .then(() => app.settled());
+  installTestHooks({
+    ready,
+    app,
+    filters,
+    panel,
+    workerReady,
+    viewer,
+    upAxis,
+    live,
+    snapshot: async () => new Uint8Array(await (await snapshot()).arrayBuffer()),
+  });
   return ready;
 }
 

@@ -15,13 +15,33 @@ export interface MeshState {
   before: BufferGeometry | null;
   /** Positions when noise was first added since the last load/revert; null without noise. */
   preNoise: Float32Array | null;
+  /** Positions of a clean original that came with the file (a gallery case); kept across reverts. */
+  reference: Float32Array | null;
+  /**
+   * While a live preview is on screen, the mesh's own geometry (mesh.geometry is then a copy with
+   * the preview applied); runs, export and revert work on this one (baseGeometry).
+   */
+  previewBase: BufferGeometry | null;
+}
+
+/** The mesh's own geometry, whether or not a preview is on screen. */
+export function baseGeometry(state: MeshState): BufferGeometry {
+  return state.previewBase ?? state.mesh.geometry;
+}
+
+/** Takes a preview off screen: the mesh gets its own geometry back. */
+export function dropPreview(state: MeshState): void {
+  if (!state.previewBase) return;
+  state.mesh.geometry.dispose();
+  state.mesh.geometry = state.previewBase;
+  state.previewBase = null;
 }
 
 let counter = 0;
 
 export function meshStates(meshes: Mesh[]): MeshState[] {
   const file = ++counter;
-  return meshes.map((mesh, i) => ({ id: `${file}:${i}`, mesh, original: mesh.geometry.clone(), before: null, preNoise: null }));
+  return meshes.map((mesh, i) => ({ id: `${file}:${i}`, mesh, original: mesh.geometry.clone(), before: null, preNoise: null, reference: null, previewBase: null }));
 }
 
 function floats(geometry: BufferGeometry, name: string, itemSize: number): Float32Array | undefined {
@@ -79,7 +99,7 @@ export function revert(state: MeshState): void {
   state.before?.dispose();
   state.before = state.mesh.geometry;
   state.mesh.geometry = state.original.clone();
-  state.preNoise = null;
+  state.preNoise = state.reference;
 }
 
 /** RMS vertex distance between two position arrays, and the bounding-box diagonal of `b`. */

@@ -6,6 +6,8 @@
 // '#' starts a comment. Polygons are fan-triangulated; faces with fewer than three corners (points,
 // edges) are skipped. Face colors are ignored: the app works with per-vertex signals.
 
+import { counted } from './words';
+
 /** A parsed OFF mesh as flat arrays, independent of three.js so that it can be tested alone. */
 export interface OffMesh {
   /** x, y, z per vertex. */
@@ -106,7 +108,7 @@ export function parseOff(text: string): OffMesh {
   for (let v = 0; v < vertexCount; v++) {
     const t = lines.tokens();
     if (t === null) {
-      throw new OffError(`the header announces ${vertexCount} vertices, but the file ends after ${v}`);
+      throw new OffError(`the header announces ${counted(vertexCount, 'vertex', 'vertices')}, but the file ends after ${v}`);
     }
     for (let k = 0; k < 3; k++) positions[3 * v + k] = number(t[k], `3 vertex coordinates`, lines);
     let at = 3;
@@ -127,7 +129,7 @@ export function parseOff(text: string): OffMesh {
       const index = number(t[k], `${corners} vertex indices`, lines);
       if (!Number.isInteger(index) || index < 0 || index >= vertexCount) {
         throw new OffError(
-          `line ${lines.lineNumber}: face ${f} refers to vertex ${t[k]}, but the file has ${vertexCount} vertices (0 to ${vertexCount - 1})`,
+          `line ${lines.lineNumber}: face ${f} refers to vertex ${t[k]}, but the file has ${counted(vertexCount, 'vertex', 'vertices')} (0 to ${vertexCount - 1})`,
         );
       }
       face.push(index);

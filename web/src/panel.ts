@@ -6,9 +6,19 @@ import GUI from 'lil-gui';
 import type { FilterPreset } from '../../wasm/geoshift';
 import { PRESETS, applyCorePresets, hasValues, paramsOf, presetById, type Param, type Preset } from './presets';
 import { HEIGHT } from './runner';
+import { orderSignals } from './signal-order';
+
+/**
+ * A change in the panel: another preset; a slider being dragged ('slide') and let go ('release');
+ * a number being typed ('input') and settled, or a choice picked ('commit').
+ */
+export type PanelChange = 'preset' | 'slide' | 'release' | 'input' | 'commit';
 
 export class ParameterPanel {
   private gui: GUI | null = null;
+  private readonly listeners: Array<(change: PanelChange) => void> = [];
+  /** A lil-gui slider is held (pointer down on it until its change finishes). */
+  private sliding = false;
   private readonly values = new Map<string, Record<string, unknown>>();
   private available: Set<string> | null = null;
   /** Extra choices for presets that read a named scalar (Terrain): the mesh's scalar attributes. */
@@ -30,7 +40,13 @@ export class ParameterPanel {
     select.addEventListener('change', () => {
       this.build();
       this.onChange();
+      this.notify('preset');
     });
+    const grab = (event: Event) => {
+      this.sliding = event.target instanceof Element && event.target.closest('.lil-slider') !== null;
+    };
+    container.addEventListener('pointerdown', grab, { capture: true });
+    container.addEventListener('touchstart', grab, { capture: true, passive: true });
     this.build();
   }
 
@@ -83,11 +99,45 @@ export class ParameterPanel {
   set(key: string, value: unknown): void {
     this.valuesOf(this.preset())[key] = value;
     this.gui?.controllersRecursive().forEach((c) => c.updateDisplay());
+    this.notify('commit');
   }
 
-  /** File attributes first (a terrain file's own is what its user came for), then the height. */
+  /** Told about every change (the URL and the live preview follow the panel). */
+  listen(listener: (change: PanelChange) => void): void {
+    this.listeners.push(listener);
+  }
+
+  /**
+   * Selects a preset and sets its values (a shared link, a gallery case, back/forward) without
+   * telling the listeners: the caller restores a state, it does not make a new one. False when the
+   * preset is unknown or unavailable in this build.
+   */
+  restore(presetId: string, values: Record<string, unknown>): boolean {
+    const preset = presetById(presetId);
+    if (!preset || !this.isAvailable(preset)) return false;
+    Object.assign(this.valuesOf(preset), values);
+    if (this.select.value !== presetId) {
+      this.select.value = presetId;
+      this.build();
+      this.onChange();
+    } else {
+      this.gui?.controllersRecursive().forEach((c) => c.updateDisplay());
+    }
+    return true;
+  }
+
+  /** The values of the current preset as the panel shows them (signal included). */
+  currentValues(): Record<string, unknown> {
+    return { ...this.valuesOf(this.preset()) };
+  }
+
+  private notify(change: PanelChange): void {
+    for (const listener of this.listeners) listener(change);
+  }
+
+  /** Heights first, categories last (signal-order.ts); the first is the default. */
   private signalChoices(): string[] {
-    return [...new Set([...this.scalarChoices.filter((n) => !n.startsWith('_curvature') && n !== '_geodesic'), HEIGHT])];
+    return orderSignals(this.scalarChoices, HEIGHT);
   }
 
   private valuesOf(preset: Preset): Record<string, unknown> {
@@ -117,6 +167,7 @@ export class ParameterPanel {
     if (preset.needsScalar) {
       const c = gui.add(values, 'signal', this.signalChoices()).name('Attribute to filter');
       c.domElement.title = `The per-vertex value to smooth: one from the file, or ${HEIGHT}, the height of each vertex along the mesh's thinnest axis.`;
+      c.domElement.dataset.param = 'signal';
     }
     for (const param of preset.params.filter((p) => !p.expert)) addController(gui, values, param);
     const expertParams = preset.params.filter((p) => p.expert);
@@ -125,6 +176,13 @@ export class ParameterPanel {
       for (const param of expertParams) addController(folder, values, param);
       folder.close();
     }
+    // Changes in the folder reach the GUI's handlers too (lil-gui passes them up).
+    gui.onChange(() => this.notify(this.sliding ? 'slide' : 'input'));
+    gui.onFinishChange(() => {
+      const released = this.sliding;
+      this.sliding = false;
+      this.notify(released ? 'release' : 'commit');
+    });
     this.gui = gui;
   }
 }

@@ -1,7 +1,7 @@
 // Runs an op on every mesh of the open file, one after another, through the worker. Results are
 // applied only when every mesh succeeded, so a failure or a cancel leaves the model as it was.
 
-import { applyOutput, meshArrays, rmsError, snapshot, type MeshState } from './model';
+import { applyOutput, baseGeometry, dropPreview, meshArrays, rmsError, snapshot, type MeshState } from './model';
 import type { Preset } from './presets';
 import type { RunOutput } from './worker/protocol';
 import { GeoshiftError, type WorkerClient } from './worker/client';
@@ -75,7 +75,8 @@ export async function runOnMeshes(
       if (cancelled()) throw new GeoshiftError('cancelled', 'cancelled');
     };
     stopIfCancelled();
-    const arrays = meshArrays(state.mesh.geometry);
+    // A live preview may be on screen meanwhile; the run works on the mesh's own geometry.
+    const arrays = meshArrays(baseGeometry(state));
     if (params.signal === HEIGHT && !arrays.scalars[HEIGHT]) arrays.scalars[HEIGHT] = heightOf(arrays.positions);
     inputs.push(arrays.positions);
     await client.load(state.id, arrays);
@@ -93,6 +94,7 @@ export async function runOnMeshes(
   let diagonal = 0;
   for (const [i, state] of states.entries()) {
     const output = outputs[i]!;
+    dropPreview(state);
     snapshot(state);
     if (preset.op === 'noise' && output.positions && !state.preNoise) state.preNoise = inputs[i]!;
     applyOutput(state, output, preset.replacesColors === true);

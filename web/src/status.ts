@@ -2,8 +2,7 @@
 // data-state lets tests and styles tell them apart without parsing the text.
 
 import type { MeshCounts } from './loaders';
-
-const numberFormat = new Intl.NumberFormat('en-US');
+import { counted } from './words';
 
 export class StatusLine {
   constructor(private readonly element: HTMLElement) {}
@@ -15,7 +14,7 @@ export class StatusLine {
   shown(fileName: string, counts: MeshCounts): void {
     this.set(
       'ok',
-      `${fileName}: ${numberFormat.format(counts.vertices)} vertices, ${numberFormat.format(counts.triangles)} triangles`,
+      `${fileName}: ${counted(counts.vertices, 'vertex', 'vertices')}, ${counted(counts.triangles, 'triangle')}`,
     );
   }
 

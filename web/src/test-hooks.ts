@@ -3,7 +3,10 @@
 
 import type { App } from './app';
 import type { FilterControls } from './filter-controls';
+import type { LivePreview } from './live-preview';
 import type { ParameterPanel } from './panel';
+import type { UpAxisControl } from './up-axis';
+import type { Viewer } from './viewer';
 import type { WorkerInfo } from './worker/client';
 
 export interface TestHookParts {
@@ -12,13 +15,26 @@ export interface TestHookParts {
   filters: FilterControls;
   panel: ParameterPanel;
   workerReady: Promise<WorkerInfo>;
+  viewer: Viewer;
+  upAxis: UpAxisControl;
+  live: LivePreview;
+  /** The PNG bytes the Snapshot button saves. */
+  snapshot: () => Promise<Uint8Array>;
 }
 
-export function installTestHooks({ ready, app, filters, panel, workerReady }: TestHookParts): void {
+function base64(bytes: Uint8Array): string {
+  // Base64: bytes as a JSON array of numbers would be several times larger to pass to a test.
+  let binary = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(binary);
+}
+
+export function installTestHooks({ ready, app, filters, panel, workerReady, viewer, upAxis, live, snapshot }: TestHookParts): void {
   window.__geoshift = {
     ready,
     stats: () => app.stats(),
     settled: async () => {
+      await live.idle();
       await filters.idle();
       await app.settled();
     },
@@ -34,13 +50,12 @@ export function installTestHooks({ ready, app, filters, panel, workerReady }: Te
         const a = mesh.geometry.getAttribute(name);
         return a ? Array.from(a.array as ArrayLike<number>) : null;
       }),
-    exportGlb: async () => {
-      // Base64: a GLB as a JSON array of numbers would be several times larger to pass to a test.
-      const bytes = new Uint8Array(await filters.exportBytes());
-      let binary = '';
-      for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
-      return btoa(binary);
-    },
+    exportGlb: async () => base64(new Uint8Array(await filters.exportBytes())),
+    camera: () => viewer.cameraState(),
+    upAxis: () => upAxis.axis(),
+    params: () => ({ preset: panel.preset().id, params: panel.params() }),
+    previewEvents: () => live.events.slice(),
+    snapshot: async () => base64(await snapshot()),
   };
 }
 

@@ -11,6 +11,7 @@ import {
   Raycaster,
   Vector2,
   Scene,
+  Quaternion,
   Sphere,
   Vector3,
   WebGLRenderer,
@@ -36,7 +37,8 @@ export interface Comparison {
   split: number | null;
 }
 
-// The default view looks at the model from the front, a little from above and the right.
+// The default view looks at the model from the front, a little from above and the right, in a
+// frame where +Y is up; other up axes rotate it (for +Z up the front is -Y, as Z-up tools have it).
 const VIEW_DIRECTION = new Vector3(0.35, 0.3, 1).normalize();
 const CAMERA_UP = new Vector3(0, 1, 0);
 
@@ -45,7 +47,9 @@ export class Viewer {
   private readonly renderer: WebGLRenderer;
   private readonly scene = new Scene();
   private readonly camera = new PerspectiveCamera(40, 1, 0.01, 100);
-  private readonly controls: OrbitControls;
+  private controls: OrbitControls;
+  /** World direction of "up": the camera orbits about it and Reset view stands the model on it. */
+  private readonly up = new Vector3(0, 1, 0);
   private readonly hemisphere = new HemisphereLight(0xffffff, 0x3a3d44, 1.1);
   private model: ViewerModel | null = null;
   private mode: ViewMode = 'shaded';
@@ -72,9 +76,7 @@ export class Viewer {
     // simply be parented to the camera; updateLights() points it at the camera's "up" every frame.
     this.scene.add(this.camera, this.hemisphere);
 
-    this.controls = new OrbitControls(this.camera, this.canvas);
-    this.controls.enableDamping = true;
-    this.controls.addEventListener('change', () => this.requestRender());
+    this.controls = this.createControls();
 
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
@@ -108,6 +110,32 @@ export class Viewer {
     this.requestRender();
   }
 
+  /** Sets the up direction (a unit axis) and frames the model again standing on it. */
+  setUp(up: Vector3): void {
+    if (!up.equals(this.up)) {
+      this.up.copy(up).normalize();
+      // OrbitControls reads camera.up once, when it is created, so a new up needs new controls.
+      this.camera.up.copy(this.up);
+      this.controls.dispose();
+      this.controls = this.createControls();
+    }
+    this.fitToView();
+  }
+
+  /** Where the camera is (tests check that Reset view and touch gestures move it as expected). */
+  cameraState(): { position: number[]; target: number[]; up: number[] } {
+    return { position: this.camera.position.toArray(), target: this.controls.target.toArray(), up: this.camera.up.toArray() };
+  }
+
+  /**
+   * Draws a frame now and hands the canvas to `read` before the browser may clear it (the WebGL
+   * canvas keeps no copy of its pixels once the frame is shown), e.g. to copy it into a snapshot.
+   */
+  drawNow<T>(read: (canvas: HTMLCanvasElement) => T): T {
+    this.render();
+    return read(this.canvas);
+  }
+
   /** Frames the whole model: centred, filling the view, seen from the default direction. */
   fitToView(): void {
     if (!this.model) return;
@@ -117,10 +145,15 @@ export class Viewer {
     const halfHorizontal = Math.atan(Math.tan(halfVertical) * this.camera.aspect);
     // Distance at which the sphere touches the narrower side of the view, plus a small margin.
     const distance = (radius / Math.sin(Math.min(halfVertical, halfHorizontal))) * 1.05;
+    // Motion left over from a drag (damping) would carry the camera away from the new framing.
+    this.controls.enableDamping = false;
+    this.controls.update();
+    this.controls.enableDamping = true;
     this.camera.near = radius / 1000;
     this.camera.far = distance + radius * 100;
-    this.camera.up.copy(CAMERA_UP);
-    this.camera.position.copy(sphere.center).addScaledVector(VIEW_DIRECTION, distance);
+    this.camera.up.copy(this.up);
+    const direction = VIEW_DIRECTION.clone().applyQuaternion(new Quaternion().setFromUnitVectors(CAMERA_UP, this.up));
+    this.camera.position.copy(sphere.center).addScaledVector(direction, distance);
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(sphere.center);
     this.controls.minDistance = radius * 0.01;
@@ -208,6 +241,15 @@ export class Viewer {
         mesh.material = materialFor(this.mode, mesh);
       }
     }
+  }
+
+  private createControls(): OrbitControls {
+    // Touch: one finger rotates, two pan and pinch-zoom (OrbitControls' defaults, kept explicit).
+    const controls = new OrbitControls(this.camera, this.canvas);
+    controls.enableDamping = true;
+    controls.enableRotate = controls.enablePan = controls.enableZoom = true;
+    controls.addEventListener('change', () => this.requestRender());
+    return controls;
   }
 
   private updateLights(): void {

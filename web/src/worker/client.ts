@@ -44,6 +44,7 @@ export class WorkerClient {
   private readonly cancelFlag: Int32Array | null;
   private started!: Promise<WorkerInfo>;
   private runningId = 0;
+  private readonly previewIds = new Set<number>();
   private threaded = false;
 
   constructor(
@@ -72,6 +73,22 @@ export class WorkerClient {
   async run(meshId: string, op: string, params: Record<string, unknown>, onProgress?: ProgressListener): Promise<RunOutput> {
     const response = await this.request({ type: 'run', meshId, op, params }, () => [], onProgress);
     return (response as Extract<Response, { kind: 'run' }>).output;
+  }
+
+  /** The op on a coarse level of a loaded mesh (live preview); the worker's mesh is not changed. */
+  async preview(meshId: string, op: string, params: Record<string, unknown>, maxVertices: number): Promise<RunOutput> {
+    const response = await this.request({ type: 'preview', meshId, op, params, maxVertices });
+    return (response as Extract<Response, { kind: 'run' }>).output;
+  }
+
+  /**
+   * Asks a running preview to stop, through the shared flag only (threaded build): the worker and
+   * the coarse level it keeps stay. Without the flag the preview finishes and its caller drops it.
+   */
+  stopPreview(): void {
+    const id = this.runningId;
+    if (!id || !this.pending.has(id) || !this.previewIds.has(id) || !this.cancelFlag || !this.threaded) return;
+    Atomics.store(this.cancelFlag, 0, id);
   }
 
   /** Stops the current run, if any; its promise rejects with a GeoshiftError of kind 'cancelled'. */
@@ -142,6 +159,7 @@ export class WorkerClient {
       return;
     }
     this.pending.delete(message.id);
+    this.previewIds.delete(message.id);
     if (message.id === this.runningId) this.runningId = 0;
     if (message.type === 'error') pending.reject(new GeoshiftError(message.message, message.kind as ErrorKind));
     else pending.resolve(message);
@@ -151,7 +169,8 @@ export class WorkerClient {
     await this.started;
     const id = this.nextId++;
     const request = { ...body, id } as Request;
-    if (request.type === 'run') this.runningId = id;
+    if (request.type === 'run' || request.type === 'preview') this.runningId = id;
+    if (request.type === 'preview') this.previewIds.add(id);
     return new Promise<Response>((resolve, reject) => {
       this.pending.set(id, onProgress ? { resolve, reject, onProgress } : { resolve, reject });
       this.worker.postMessage(request, transfer(request));
@@ -161,6 +180,7 @@ export class WorkerClient {
   private failAll(error: Error): void {
     const all = [...this.pending.values()];
     this.pending.clear();
+    this.previewIds.clear();
     this.runningId = 0;
     for (const p of all) p.reject(error);
   }

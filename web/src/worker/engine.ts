@@ -63,6 +63,13 @@ export class Engine {
         this.post({ type: 'result', id: request.id, kind: 'run', output }, transferables([output.positions, output.colors, ...Object.values(output.scalars)]));
         return;
       }
+      case 'preview': {
+        const handle = this.handles.get(request.meshId);
+        if (handle === undefined) throw new GeoshiftError(`mesh "${request.meshId}" was not loaded into the worker`, 'input');
+        const output = this.api.preview(handle, request.op, request.params, request.maxVertices, this.progressFor(request.id));
+        this.post({ type: 'result', id: request.id, kind: 'run', output }, transferables([output.positions, output.colors, ...Object.values(output.scalars)]));
+        return;
+      }
       case 'free':
         this.forget(request.meshId);
         this.post({ type: 'result', id: request.id, kind: 'free' }, []);

@@ -18,6 +18,8 @@ export interface MeshArrays {
 export type Request =
   | ({ type: 'load'; id: number; meshId: string } & MeshArrays)
   | { type: 'run'; id: number; meshId: string; op: string; params: Record<string, unknown> }
+  /** The op on a coarse level of the mesh (at most maxVertices vertices); the mesh is not changed. */
+  | { type: 'preview'; id: number; meshId: string; op: string; params: Record<string, unknown>; maxVertices: number }
   /**
    * Asks run `runId` to stop. A run blocks the worker, so this message is read only after the run
    * ended; the shared flag (threaded build) or terminating the worker does the actual stopping (see
@@ -56,7 +58,7 @@ export type Response =
   | { type: 'result'; id: number; kind: 'free' | 'cancel' }
   | { type: 'error'; id: number; kind: ErrorKind; message: string };
 
-const requestTypes = new Set(['load', 'run', 'cancel', 'free']);
+const requestTypes = new Set(['load', 'run', 'preview', 'cancel', 'free']);
 const responseTypes = new Set(['ready', 'fatal', 'progress', 'result', 'error']);
 
 function hasType(value: unknown, types: Set<string>): value is { type: string } {
@@ -73,6 +75,8 @@ export function isRequest(value: unknown): value is Request {
       return typeof v.meshId === 'string' && v.positions instanceof Float32Array && v.indices instanceof Uint32Array;
     case 'run':
       return typeof v.meshId === 'string' && typeof v.op === 'string' && typeof v.params === 'object' && v.params !== null;
+    case 'preview':
+      return typeof v.meshId === 'string' && typeof v.op === 'string' && typeof v.params === 'object' && v.params !== null && typeof v.maxVertices === 'number';
     case 'free':
       return typeof v.meshId === 'string';
     case 'cancel':

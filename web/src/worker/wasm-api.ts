@@ -1,7 +1,7 @@
 // The thin typed wrapper over the module: checks arguments at the JS edge and turns the module's
 // { ok: false, error } values into GeoshiftError, so callers use try/catch like any JS API.
 
-import type { Failure, FilterPreset, GeoshiftModule, RunFailure } from '../../../wasm/geoshift';
+import type { Failure, FilterPreset, GeoshiftModule, RunFailure, RunResult } from '../../../wasm/geoshift';
 import type { ErrorKind, LoadInfo, MeshArrays, RunOutput } from './protocol';
 
 export class GeoshiftError extends Error {
@@ -66,11 +66,20 @@ export class GeoshiftApi {
    * of the output are copies owned by the caller, free to transfer.
    */
   run(handle: number, op: string, params: Record<string, unknown>, onProgress?: (fraction: number, stage: string) => boolean): RunOutput {
-    const r = this.module.run(handle, op, params, onProgress);
-    if (!r.ok) fail(r);
-    const output: RunOutput = { scalars: r.scalars, stats: r.stats };
-    if (r.positions) output.positions = r.positions;
-    if (r.colors) output.colors = r.colors;
-    return output;
+    return outputOf(this.module.run(handle, op, params, onProgress));
   }
+
+  /** The op on a coarse level of the mesh, brought back to every vertex (a live preview). */
+  preview(handle: number, op: string, params: Record<string, unknown>, maxVertices: number, onProgress?: (fraction: number, stage: string) => boolean): RunOutput {
+    if (!Number.isInteger(maxVertices)) throw new GeoshiftError('maxVertices must be a whole number', 'input');
+    return outputOf(this.module.preview(handle, op, params, maxVertices, onProgress));
+  }
+}
+
+function outputOf(r: RunResult): RunOutput {
+  if (!r.ok) fail(r);
+  const output: RunOutput = { scalars: r.scalars, stats: r.stats };
+  if (r.positions) output.positions = r.positions;
+  if (r.colors) output.colors = r.colors;
+  return output;
 }
