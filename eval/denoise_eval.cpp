@@ -90,6 +90,8 @@ int evalMaxPasses = 0;
 std::vector<double> evalRange;
 std::vector<int> evalPresmoothing;
 int evalVertexIterations = 0;
+double evalRadius = 0;
+int evalPatience = 0;
 
 Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   Mesh m = noisy;
@@ -100,6 +102,8 @@ Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   if (!evalRange.empty()) o.rangeBandwidths = evalRange;
   if (!evalPresmoothing.empty()) o.presmoothing = evalPresmoothing;
   if (evalVertexIterations > 0) o.vertexIterations = evalVertexIterations;
+  if (evalRadius > 0) o.neighborhood.radius = evalRadius;
+  if (evalPatience > 0) o.patience = evalPatience;
   const DenoiseResult r = denoise(m, o);
   std::ostringstream note;
   note.precision(3);
@@ -331,7 +335,7 @@ int usage(const char* error) {
                "  --mesh      only meshes whose name contains SUBSTRING (case-insensitive)\n"
                "  --quick     a small subset, as a smoke test\n"
                "  --pairs     only the ground-truth pairs\n"
-               "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations  the default denoiser's options of those names\n"
+               "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience  the default denoiser's options of those names\n"
                "  --method    only methods whose name contains SUBSTRING\n"
                "  --noise-estimate  only the estimated against the true noise level of each case\n"
                "  --markdown  also write the tables to FILE\n"
@@ -364,6 +368,8 @@ int main(int argc, char** argv) {
         std::stringstream list(value());
         for (std::string item; std::getline(list, item, ',');) evalPresmoothing.push_back(std::stoi(item));
       } else if (a == "--vertex-iterations") evalVertexIterations = std::stoi(value());
+      else if (a == "--radius") evalRadius = std::stod(value());
+      else if (a == "--patience") evalPatience = std::stoi(value());
       else if (a == "--hr") {
         std::stringstream list(value());
         for (std::string item; std::getline(list, item, ',');) evalRange.push_back(std::stod(item));

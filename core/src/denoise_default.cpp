@@ -80,8 +80,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   {
     Mesh support = mesh;
     taubinSmooth(support, o.supportSmoothing);
-    const SurfaceGeometry geometry(support);
-    hoods = faceNeighborhoods(geometry, hoodOptions, progress.slice(0, 0.1));
+    hoods = faceNeighborhoods(support, hoodOptions, progress.slice(0, 0.1));
   }
   result.neighborhoodBytes = hoods.bytes();
 

@@ -7,20 +7,19 @@
 #include <string>
 
 #include "geoshift/error.hpp"
+#include "geoshift/geometry.hpp"
 #include "mean_shift_detail.hpp"
 
 namespace geoshift {
 
-FaceNeighborhoods faceNeighborhoods(const SurfaceGeometry& support, const FaceNeighborhoodOptions& options,
-                                    const Progress& progress) {
+FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOptions& options, const Progress& progress) {
   if (!(options.radius > 0) || !std::isfinite(options.radius))
     throw InputError("face neighbourhoods: radius must be > 0 (got " + std::to_string(options.radius) + ")");
   if (!(options.spatialBandwidth > 0) || !std::isfinite(options.spatialBandwidth))
     throw InputError("face neighbourhoods: spatial bandwidth must be > 0 (got " +
                      std::to_string(options.spatialBandwidth) + ")");
-  const Mesh& mesh = support.mesh();
   const int nf = mesh.faceCount(), nv = mesh.vertexCount();
-  const double ael = support.averageEdgeLength();
+  const double ael = averageEdgeLength(mesh);
   FaceNeighborhoods out;
   out.radius = options.radius * ael;
   out.spatialBandwidth = options.spatialBandwidth * ael;
@@ -37,8 +36,13 @@ FaceNeighborhoods faceNeighborhoods(const SurfaceGeometry& support, const FaceNe
     std::vector<int> faceStamp;  // face -> the face whose neighbourhood last looked at it
     std::vector<int> queue;
   };
+  // The log maps' tables exist only for geodesic distances (about 250 bytes a vertex).
+  std::optional<SurfaceGeometry> geometry;
   std::optional<LogMap> base;
-  if (options.geodesic) base.emplace(support);
+  if (options.geodesic) {
+    geometry.emplace(mesh);
+    base.emplace(*geometry);
+  }
   std::vector<Vec3> centroids;
   if (!options.geodesic) {
     centroids.resize(nf);

@@ -35,10 +35,10 @@ struct FaceNeighborhoods {
   }
 };
 
-// Neighbourhoods on `support` (its mesh must have the faces of the meshes the normals come from).
+// Neighbourhoods on `support` (it must have the faces of the meshes the normals come from).
 // Identical for any thread count. Throws InputError for radius or spatialBandwidth not > 0, Cancelled
 // through `progress`.
-FaceNeighborhoods faceNeighborhoods(const SurfaceGeometry& support, const FaceNeighborhoodOptions& options = {},
+FaceNeighborhoods faceNeighborhoods(const Mesh& support, const FaceNeighborhoodOptions& options = {},
                                     const Progress& progress = {});
 
 // One step of the blurring mean shift of the unit face normals: each face's normal moves to the
