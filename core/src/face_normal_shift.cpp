@@ -134,9 +134,14 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOpti
       out.spatialWeight.insert(out.spatialWeight.end(), rowWeight[i].begin(), rowWeight[i].end());
       out.start.push_back(static_cast<int>(out.face.size()));
     }
+    if (block == 0 && count < nf) {
+      // Rows are about the same length all over a mesh: reserve from the first block's mean with a
+      // margin, so that the arrays are not regrown (a regrowth holds old and new copies at once).
+      const size_t expected = static_cast<size_t>(1.08 * out.face.size() / count * nf) + 64;
+      out.face.reserve(expected);
+      out.spatialWeight.reserve(expected);
+    }
   }
-  out.face.shrink_to_fit();
-  out.spatialWeight.shrink_to_fit();
   return out;
 }
 
