@@ -1,7 +1,7 @@
 // Latency of the live preview (the module's preview(): an op on a coarse wavelet level of at most
-// 25,000, 6,000 or 3,000 vertices, brought back to every vertex) per mesh size, in Chromium with the threaded web
-// flavour (a module worker of a cross-origin-isolated page, as the app runs it) and in Node with
-// the single-threaded flavour. For each size: the first call (which analyses the mesh once), then
+// 25,000, 6,000 or 3,000 vertices, brought back to every vertex) per mesh size, in Chromium with
+// the threaded web flavour (a module worker of a cross-origin-isolated page, as the app runs it)
+// and in Node with the single-threaded flavour. For each size: the first call (which analyses the mesh once), then
 // the median of the following calls (the analysis reused), as a slider moving would make them.
 // Issue 21 asks for previews within 200 ms in the threaded build on 2 cores, up to 1M vertices.
 //
