@@ -36,8 +36,8 @@ emscripten::val runWithoutProgress(int handle, const std::string& op, const emsc
 
 // preview(handle, op, params, maxVertices, onProgress?): the op run on a coarse wavelet level of the
 // mesh (at most maxVertices vertices, analysed once and kept with the session) and brought back to
-// every vertex; returns what run returns, with stats.previewVertices, levels, analysisMs and
-// analysisReused, and leaves the session as it was (preview.cpp).
+// every vertex; returns what run returns, with stats.previewVertices, levels, stages, analysisMs,
+// analysisReused and coarseOpMs, and leaves the session as it was (preview.cpp).
 emscripten::val preview(int handle, const std::string& op, const emscripten::val& params, int maxVertices, const emscripten::val& onProgress);
 emscripten::val previewWithoutProgress(int handle, const std::string& op, const emscripten::val& params, int maxVertices);
 

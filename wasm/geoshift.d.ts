@@ -188,7 +188,8 @@ export interface GeoshiftModule {
    * The op run on a coarse wavelet level of a kept mesh (at most maxVertices vertices), its outputs
    * brought back to every vertex without the details: a quick look for a live preview. The level is
    * analysed at the first call and reused while the mesh's positions and signals stay the same. The
-   * mesh is left as it was. Stats add previewVertices, levels, analysisMs and analysisReused.
+   * mesh is left as it was. Stats add previewVertices, levels, stages (analyses chained: a smaller
+   * maxVertices analyses the kept coarse mesh further), analysisMs, analysisReused and coarseOpMs.
    */
   preview<Op extends OpName>(handle: number, op: Op, params: OpParams[Op], maxVertices: number, onProgress?: ProgressCallback): RunResult;
   /** Names of the ops this build knows. */

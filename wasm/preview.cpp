@@ -2,7 +2,8 @@
 // the web app's live preview while a slider moves. The session's mesh is analysed once into a
 // wavelet multiresolution (docs: ALGORITHMS.md §5) down to the first level with at most
 // `maxVertices` vertices; that analysis is kept with the session and reused for as long as the
-// positions and signals it was made from stay the same. Each call runs the op, with its own
+// positions and signals it was made from stay the same (a smaller maxVertices later analyses the
+// kept coarse mesh further, a larger one uses fewer of the kept stages). Each call runs the op, with its own
 // parameters, on the coarse mesh as on any mesh (spatial parameters are then in the coarse mesh's
 // edge lengths), and brings its outputs back to every vertex by the wavelet prediction with the
 // details left out (alpha = 0): odd vertices take the prediction-weighted mean of their even
@@ -28,11 +29,14 @@ namespace geoshift::wasm {
 
 using emscripten::val;
 
+// The analyses made for a session, each of the previous one's coarse mesh (the first of the
+// session's own mesh), so that a smaller level extends the chain instead of analysing the whole
+// mesh again; a larger one uses a shorter prefix of it.
 struct PreviewCache {
   std::uint64_t key = 0;
-  int maxVertices = 0;
-  Multiresolution mr;
-  Session coarse;
+  std::vector<Multiresolution> stages;
+  int used = -1;   // stages the coarse session below was made from
+  Session coarse;  // the mesh and signals the op runs on
 };
 
 namespace {
@@ -63,14 +67,14 @@ std::uint64_t fingerprint(const Session& s) {
 // The analysis with the fewest levels whose coarse mesh has at most maxVertices vertices (or the
 // coarsest one the mesh allows). Each try estimates the levels still needed from the reduction
 // per level seen so far.
-Multiresolution analyzeDownTo(const Session& s, int maxVertices, const Progress& progress) {
-  const int n = s.build.mesh.vertexCount();
+Multiresolution analyzeDownTo(const Mesh& mesh, const AttributeSet& signals, int maxVertices, const Progress& progress) {
+  const int n = mesh.vertexCount();
   double perLevel = 0.7;  // vertices kept per level; refined from each analysis
   int levels = std::max(1, static_cast<int>(std::ceil(std::log(static_cast<double>(maxVertices) / n) / std::log(perLevel))));
   for (;;) {
     WaveletOptions options;
     options.levels = levels;
-    Multiresolution mr = analyze(s.build.mesh, s.attributes, options, progress);
+    Multiresolution mr = analyze(mesh, signals, options, progress);
     const int count = mr.coarse.vertexCount();
     if (count <= maxVertices || mr.levelCount() < levels) return mr;
     perLevel = std::pow(static_cast<double>(count) / n, 1.0 / mr.levelCount());
@@ -150,23 +154,39 @@ val preview(int handle, const std::string& op, const val& params, int maxVertice
 
     const double start = emscripten_get_now();
     const std::uint64_t key = fingerprint(session);
-    const bool reused = session.preview && session.preview->key == key && session.preview->maxVertices == maxVertices;
+    if (!session.preview || session.preview->key != key) {
+      session.preview = std::make_shared<PreviewCache>();
+      session.preview->key = key;
+    }
+    PreviewCache& cache = *session.preview;
+    auto countAfter = [&](std::size_t stages) {
+      return stages == 0 ? session.build.mesh.vertexCount() : cache.stages[stages - 1].coarse.vertexCount();
+    };
+    // The shortest prefix of the chain that is small enough; else the chain grows by one stage.
+    std::size_t used = 0;
+    while (used < cache.stages.size() && countAfter(used) > maxVertices) ++used;
     double analysisMs = 0;
-    if (!reused) {
-      auto cache = std::make_shared<PreviewCache>();
-      cache->key = key;
-      cache->maxVertices = maxVertices;
-      if (session.build.mesh.vertexCount() > maxVertices) cache->mr = analyzeDownTo(session, maxVertices, progress);
-      const bool coarsened = cache->mr.levelCount() > 0;
-      cache->coarse.build.mesh = coarsened ? cache->mr.coarse : session.build.mesh;
-      cache->coarse.build.vertexOf.resize(cache->coarse.build.mesh.vertexCount());
-      std::iota(cache->coarse.build.vertexOf.begin(), cache->coarse.build.vertexOf.end(), 0);
-      cache->coarse.attributes = coarsened ? cache->mr.coarseAttributes : session.attributes;
-      session.preview = std::move(cache);
+    bool reused = true;
+    if (countAfter(used) > maxVertices) {
+      reused = false;
+      const Mesh& from = used == 0 ? session.build.mesh : cache.stages.back().coarse;
+      const AttributeSet& signals = used == 0 ? session.attributes : cache.stages.back().coarseAttributes;
+      Multiresolution next = analyzeDownTo(from, signals, maxVertices, progress);
+      if (next.levelCount() > 0) {
+        cache.stages.push_back(std::move(next));
+        ++used;
+      }
       analysisMs = emscripten_get_now() - start;
     }
-    const PreviewCache& cache = *session.preview;
-    const bool coarsened = cache.mr.levelCount() > 0;
+    if (static_cast<int>(used) != cache.used) {
+      cache.coarse.build.mesh = used == 0 ? session.build.mesh : cache.stages[used - 1].coarse;
+      cache.coarse.build.vertexOf.resize(cache.coarse.build.mesh.vertexCount());
+      std::iota(cache.coarse.build.vertexOf.begin(), cache.coarse.build.vertexOf.end(), 0);
+      cache.coarse.attributes = used == 0 ? session.attributes : cache.stages[used - 1].coarseAttributes;
+      cache.used = static_cast<int>(used);
+    }
+    int levels = 0;
+    for (std::size_t k = 0; k < used; ++k) levels += cache.stages[k].levelCount();
 
     const OpContext context{cache.coarse, Params(entry.name, params), progress};
     const double opStart = emscripten_get_now();
@@ -177,7 +197,9 @@ val preview(int handle, const std::string& op, const val& params, int maxVertice
     const std::vector<int>& vertexOf = session.build.vertexOf;
     const int threads = context.threads(0);
     auto toCaller = [&](const std::vector<double>& values, int dim, bool label) {
-      return floatsOut(toCallerLayout(coarsened ? prolong(cache.mr, values, dim, label, threads, progress) : values, dim, vertexOf));
+      std::vector<double> fine = values;
+      for (std::size_t k = used; k-- > 0;) fine = prolong(cache.stages[k], fine, dim, label, threads, progress);
+      return floatsOut(toCallerLayout(fine, dim, vertexOf));
     };
     const double backStart = emscripten_get_now();
     val result = val::object();
@@ -199,7 +221,8 @@ val preview(int handle, const std::string& op, const val& params, int maxVertice
     stats.set("coarseOpMs", opMs);
     stats.set("backToEveryVertexMs", emscripten_get_now() - backStart);
     stats.set("analysisReused", reused);
-    stats.set("levels", cache.mr.levelCount());
+    stats.set("levels", levels);
+    stats.set("stages", static_cast<int>(used));
     stats.set("previewVertices", cache.coarse.build.mesh.vertexCount());
     stats.set("vertices", session.callerVertexCount());
     stats.set("weldedVertices", session.build.mesh.vertexCount());

@@ -59,6 +59,31 @@ test('a large mesh is previewed on a level of at most maxVertices, analysed once
   g.freeMesh(h);
 });
 
+test('a smaller level analyses the kept coarse mesh further; a larger one reuses a shorter chain', () => {
+  const mesh = saddle(90);
+  const n = mesh.positions.length / 3;
+  const h = load(mesh);
+  // A constant signal: the mean shift leaves it as it is, and the way back (weights summing to 1,
+  // through every stage) must too.
+  assert.ok(g.setAttribute(h, '_C', 1, new Float32Array(n).fill(2.5)).ok);
+  const params = { signal: '_C', mode: 'ms', hs: 2, hr: 0.5, radius: 4 };
+  const big = g.preview(h, 'filter', params, 3000);
+  assert.ok(big.ok, big.error);
+  assert.equal(big.stats.stages, 1);
+  const small = g.preview(h, 'filter', params, 600);
+  assert.ok(small.ok, small.error);
+  assert.equal(small.stats.stages, 2);
+  assert.equal(small.stats.analysisReused, false);
+  assert.ok(small.stats.previewVertices <= 600);
+  assert.ok(small.stats.levels > big.stats.levels);
+  for (const r of [big, small]) assert.ok(r.scalars._C.every((v) => Math.abs(v - 2.5) < 1e-5), 'a constant did not stay constant');
+  const again = g.preview(h, 'filter', params, 3000);
+  assert.equal(again.stats.analysisReused, true);
+  assert.equal(again.stats.stages, 1);
+  assert.equal(again.stats.previewVertices, big.stats.previewVertices);
+  g.freeMesh(h);
+});
+
 test('signals: a filtered scalar is interpolated within its range, segment labels stay labels', () => {
   const mesh = saddle(80);
   const n = mesh.positions.length / 3;

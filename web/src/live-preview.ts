@@ -206,8 +206,9 @@ export class LivePreview {
   /**
    * Picks the preset's coarse level for the next previews from how long this one took. The op's
    * share grows with the coarse vertex count; the rest (bringing the result back to every vertex,
-   * drawing it) does not. Levels only go down, and only for the file on screen: each new level is
-   * analysed once more, which takes seconds on a large mesh (bench/wasm/preview.mjs).
+   * drawing it) does not. Levels only go down, and only for the file on screen (a smaller level
+   * analyses the kept coarse mesh further, which is quick; the first analysis of a large mesh is
+   * not: ~15 s for 1M vertices, bench/wasm/preview.mjs).
    */
   private adapt(presetId: string, outputs: RunOutput[], ms: number): void {
     const sum = (key: string) => outputs.reduce((t, o) => t + Number(o.stats[key] ?? 0), 0);
