@@ -42,7 +42,7 @@ void validate(const DenoiseOptions& o) {
 // One copy of the mesh being denoised: its positions and the face normals its guard refers to.
 struct Track {
   std::vector<Vec3> positions;
-  const std::vector<Vec3>* reference = nullptr;  // shared by every candidate from the same start
+  const VertexUpdateOptions* update = nullptr;  // with the reference normals of its start, shared
 };
 
 }  // namespace
@@ -130,6 +130,8 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     t.positions = work.positions();
   };
   double rangeBandwidth = 0;  // of the candidate being computed
+  // One set of vertex update options per start (input and probe), each holding its start's face
+  // normals as the flip guard's reference, shared by every candidate and pass.
   VertexUpdateOptions update;
   update.iterations = o.vertexIterations;
   update.flipGuard = FlipGuard::InputOrTarget;
@@ -138,8 +140,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     work.positions() = t.positions;
     const std::vector<Vec3> targets =
         shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), rangeBandwidth, parallel);
-    update.referenceNormals = *t.reference;
-    VertexUpdateResult u = updateVertices(work, targets, update);
+    VertexUpdateResult u = updateVertices(work, targets, *t.update);
     result.limitedSteps += u.limitedSteps;
     t.positions = std::move(u.positions);
     ++result.passesRun;
@@ -147,8 +148,9 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
 
   std::vector<Vec3> perturbed = input;
   for (int v = 0; v < n; ++v) perturbed[v] += eps * probe[v] * normals[v];
-  const std::vector<Vec3> inputReference = referenceOf(input), perturbedReference = referenceOf(perturbed);
-  const Track y{input, &inputReference}, yp{perturbed, &perturbedReference};
+  VertexUpdateOptions inputUpdate = update, perturbedUpdate = update;
+  inputUpdate.referenceNormals = referenceOf(input);
+  perturbedUpdate.referenceNormals = referenceOf(perturbed);
   std::vector<Vec3> best;
   double bestRisk = 0, bestUnbiased = 0;
   struct Candidate {
@@ -163,7 +165,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   for (size_t c = 0; c < candidates.size(); ++c) {
     const int steps = candidates[c].steps;
     rangeBandwidth = candidates[c].rangeBandwidth;
-    Track x = y, xp = yp;
+    Track x{input, &inputUpdate}, xp{perturbed, &perturbedUpdate};
     presmooth(x, steps);
     if (!fixed) presmooth(xp, steps);
     int lastBest = 0;

@@ -69,7 +69,10 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
   if (!options.referenceNormals.empty() && options.referenceNormals.size() != static_cast<size_t>(mesh.faceCount()))
     throw InputError("vertex update: " + std::to_string(options.referenceNormals.size()) + " reference normals for " +
                      std::to_string(mesh.faceCount()) + " faces");
-  std::vector<Vec3> inputNormal = options.referenceNormals.empty() ? faceNormals(mesh) : options.referenceNormals;
+  // The caller's reference is read in place (a denoiser's passes share one); only the default is made.
+  std::vector<Vec3> ownReference;
+  if (options.referenceNormals.empty()) ownReference = faceNormals(mesh);
+  const std::vector<Vec3>& inputNormal = options.referenceNormals.empty() ? ownReference : options.referenceNormals;
 
   VertexUpdateResult result;
   std::vector<Vec3> x = mesh.positions(), candidate = x, step(nv);
