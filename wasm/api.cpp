@@ -8,6 +8,7 @@
 #include "convert.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
+#include "geoshift/denoise.hpp"
 #include "geoshift/presets.hpp"
 #include "ops.hpp"
 
@@ -135,6 +136,23 @@ val listPresets() {
     entry.set("alpha", p.detailGain);
     list.call<void>("push", entry);
   }
+  // The default denoiser's settings in the denoise op's parameter names (ops_denoise.cpp), so that
+  // the app's Denoise preset shows the library's defaults.
+  const DenoiseOptions d;
+  val denoise = val::object();
+  denoise.set("name", std::string("denoise"));
+  denoise.set("description", std::string("the default denoiser (docs/denoising.md)"));
+  denoise.set("signal", std::string("normal"));
+  denoise.set("strength", d.strength);
+  denoise.set("hr", d.rangeBandwidths.front());
+  denoise.set("noise", d.noiseLevel);
+  denoise.set("passes", d.fixedPasses);
+  denoise.set("radius", d.neighborhood.radius);
+  denoise.set("hs", d.neighborhood.spatialBandwidth);
+  denoise.set("vertexIterations", d.vertexIterations);
+  denoise.set("levels", d.levels);
+  denoise.set("alpha", d.alpha.front());
+  list.call<void>("push", denoise);
   return list;
 }
 

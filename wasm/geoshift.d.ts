@@ -194,8 +194,23 @@ export interface GeoshiftModule {
   preview<Op extends OpName>(handle: number, op: Op, params: OpParams[Op], maxVertices: number, onProgress?: ProgressCallback): RunResult;
   /** Names of the ops this build knows. */
   ops(): string[];
-  /** The core's filter presets (the CLI's --preset), as parameters of the filter op. */
-  presets(): FilterPreset[];
+  /**
+   * The core's filter presets (the CLI's --preset), as parameters of the filter op, then one named
+   * "denoise": the default denoiser's settings as parameters of the denoise op.
+   */
+  presets(): CorePreset[];
+}
+
+/** What presets() lists: the filter presets, then the denoiser's defaults. */
+export type CorePreset = FilterPreset | DenoiseDefaults;
+
+/** The default denoiser's settings (core/include/geoshift/denoise.hpp) in the denoise op's names. */
+export interface DenoiseDefaults {
+  name: 'denoise';
+  description: string;
+  signal: 'normal';
+  strength: number; hr: number; noise: number; passes: number; radius: number; hs: number;
+  vertexIterations: number; levels: number; alpha: number;
 }
 
 /** A filter preset of the core (core/src/presets.cpp): the filter op's parameters and what it is. */

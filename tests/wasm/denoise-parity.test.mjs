@@ -90,6 +90,19 @@ test('the threaded build denoises to the same bits with 1 and 4 threads, and as 
   assert.ok(sameBits(single.positions, one.positions), 'the threaded build differs from the single-threaded one');
 });
 
+test('presets() gives the default denoiser\'s settings: sent as parameters they give what `geoshift denoise` gives', () => {
+  const entry = geoshift.presets().find((p) => p.name === 'denoise');
+  assert.ok(entry, 'presets() has no denoise entry');
+  const { name, description, signal, ...params } = entry;
+  assert.ok(description.length > 0 && signal === 'normal', name);
+  assert.equal(params.noise, 0);   // measured on the mesh
+  assert.equal(params.passes, 0);  // chosen by SURE
+  const off = path.join(dir, 'box.off');
+  writeCoff(off, noisy);
+  const r = denoised(geoshift, params);
+  assertClose(assert, r.positions, runNative(dir, 'denoise', off, [])('POSITION'), 'positions');
+});
+
 test('bad denoise parameters are refused, naming what is wrong', () => {
   const { handle } = geoshift.loadMesh(noisy.positions, noisy.indices);
   const expectError = (params, pattern) => {

@@ -3,7 +3,7 @@
 // switching back and forth keeps what the user typed.
 
 import GUI from 'lil-gui';
-import type { FilterPreset } from '../../wasm/geoshift';
+import type { CorePreset } from '../../wasm/geoshift';
 import { PRESETS, applyCorePresets, hasValues, paramsOf, presetById, type Param, type Preset } from './presets';
 import { HEIGHT } from './runner';
 import { orderSignals } from './signal-order';
@@ -84,7 +84,7 @@ export class ParameterPanel {
   }
 
   /** Takes the filter presets' values from the module (they are the core's: one table for all). */
-  setCorePresets(core: FilterPreset[]): void {
+  setCorePresets(core: CorePreset[]): void {
     applyCorePresets(core);
     for (const preset of PRESETS) if (preset.core) this.values.delete(preset.id);
     this.build();

@@ -3,7 +3,7 @@
 // average edge length (AEL). The values of the filter presets are the core's (filterPresets(),
 // docs/algorithms.md#presets), read from the module when it starts (applyCorePresets).
 
-import type { FilterPreset } from '../../wasm/geoshift';
+import type { CorePreset } from '../../wasm/geoshift';
 
 export interface NumberParam {
   key: string;
@@ -97,18 +97,18 @@ const alpha = (v: number) => num('alpha', 'Detail gain α', '', v, 0, 2, 0.05, '
 
 export const PRESETS: Preset[] = [
   {
-    id: 'denoise', name: 'Denoise', op: 'denoise',
+    id: 'denoise', name: 'Denoise', op: 'denoise', core: 'denoise',
     summary: 'Removes scanner noise from the surface while keeping sharp edges and corners. Auto measures the noise on the mesh and picks how much to smooth.',
     fixed: { method: 'meanshift' },
     params: [
-      num('strength', 'Strength', '× the noise', 1, 0.25, 4, 0.05, 'How hard to smooth, relative to the noise measured on the mesh (or given below). Above 1 smooths more, below 1 keeps more fine detail.'),
-      num('hr', 'Keep edges', 'normal tolerance', 0.35, 0.1, 1, 0.01, 'How different two surface directions may be and still be averaged. Smaller keeps more edges and corners sharp; larger smooths organic shapes more evenly.'),
-      num('noise', 'Noise level (0 = Auto)', AEL, 0, 0, 3, 0.01, 'How far the scan points scatter around the true surface. 0 measures it on the mesh; the result panel shows the value found.'),
-      expert(num('passes', 'Passes (0 = Auto)', '', 0, 0, 60, 1, 'Rounds of normal filtering and vertex update. 0 lets the risk estimate choose.')),
-      expert(num('radius', 'Neighbourhood radius r', AEL, 1.75, 0.5, 10, 0.05, 'How far around each face the normals are averaged.')),
-      expert(num('hs', 'Spatial bandwidth h_s', AEL, 0.6, 0.1, 5, 0.05, 'How quickly the influence of a neighbouring face fades with its distance.')),
-      expert(num('vertexIterations', 'Vertex update steps', '', 10, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.')),
-      expert(levels(0)), expert(alpha(1)),
+      num('strength', 'Strength', '× the noise', CORE, 0.25, 4, 0.05, 'How hard to smooth, relative to the noise measured on the mesh (or given below). Above 1 smooths more, below 1 keeps more fine detail.'),
+      num('hr', 'Keep edges', 'normal tolerance', CORE, 0.1, 1, 0.01, 'How different two surface directions may be and still be averaged. Smaller keeps more edges and corners sharp; larger smooths organic shapes more evenly.'),
+      num('noise', 'Noise level (0 = Auto)', AEL, CORE, 0, 3, 0.01, 'How far the scan points scatter around the true surface. 0 measures it on the mesh; the result panel shows the value found.'),
+      expert(num('passes', 'Passes (0 = Auto)', '', CORE, 0, 60, 1, 'Rounds of normal filtering and vertex update. 0 lets the risk estimate choose.')),
+      expert(num('radius', 'Neighbourhood radius r', AEL, CORE, 0.5, 10, 0.05, 'How far around each face the normals are averaged.')),
+      expert(num('hs', 'Spatial bandwidth h_s', AEL, CORE, 0.1, 5, 0.05, 'How quickly the influence of a neighbouring face fades with its distance.')),
+      expert(num('vertexIterations', 'Vertex update steps', '', CORE, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.')),
+      expert(levels(CORE)), expert(alpha(CORE)),
     ],
   },
   {
@@ -189,7 +189,7 @@ export const NOISE: Preset = {
  * Gives the presets that follow a core preset its values (the module's presets()). Throws when the
  * module lacks one of them or a value for one of their parameters.
  */
-export function applyCorePresets(core: FilterPreset[], presets: Preset[] = PRESETS): void {
+export function applyCorePresets(core: CorePreset[], presets: Preset[] = PRESETS): void {
   for (const preset of presets) {
     if (!preset.core) continue;
     const values = core.find((c) => c.name === preset.core) as Record<string, unknown> | undefined;

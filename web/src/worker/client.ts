@@ -6,7 +6,7 @@
 // worker and starts a new one; the run fails as cancelled at once. The page is the keeper of the
 // meshes (it loads the current geometry before each run), so a new worker loses nothing.
 
-import type { FilterPreset } from '../../../wasm/geoshift';
+import type { CorePreset } from '../../../wasm/geoshift';
 import type { ErrorKind, LoadInfo, MeshArrays, Request, Response, RunOutput } from './protocol';
 import { isResponse, transferables } from './protocol';
 import { GeoshiftError } from './wasm-api';
@@ -18,7 +18,7 @@ export interface WorkerInfo {
   threads: number;
   ops: string[];
   /** The core's filter presets, whose values the panel shows. */
-  presets: FilterPreset[];
+  presets: CorePreset[];
 }
 
 export type ProgressListener = (fraction: number, stage: string) => void;

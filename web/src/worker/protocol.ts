@@ -2,7 +2,7 @@
 // answers it with exactly one `result` or `error`, after any number of `progress` messages.
 // Typed arrays travel as transferred buffers in both directions, never structured-cloned.
 
-import type { BuildReport, FilterPreset, RunStats } from '../../../wasm/geoshift';
+import type { BuildReport, CorePreset, RunStats } from '../../../wasm/geoshift';
 
 /** A mesh as the page holds it, in its own (three.js) vertex layout. */
 export interface MeshArrays {
@@ -49,7 +49,7 @@ export type ErrorKind = 'input' | 'cancelled' | 'memory' | 'internal';
 
 export type Response =
   /** Sent once when the module is ready: which build runs and what it can do. */
-  | { type: 'ready'; threaded: boolean; threads: number; ops: string[]; presets: FilterPreset[] }
+  | { type: 'ready'; threaded: boolean; threads: number; ops: string[]; presets: CorePreset[] }
   /** The module could not start (no wasm, a missing file). */
   | { type: 'fatal'; message: string }
   | { type: 'progress'; id: number; fraction: number; stage: string }

@@ -1,7 +1,7 @@
 // The thin typed wrapper over the module: checks arguments at the JS edge and turns the module's
 // { ok: false, error } values into GeoshiftError, so callers use try/catch like any JS API.
 
-import type { Failure, FilterPreset, GeoshiftModule, RunFailure, RunResult } from '../../../wasm/geoshift';
+import type { Failure, CorePreset, GeoshiftModule, RunFailure, RunResult } from '../../../wasm/geoshift';
 import type { ErrorKind, LoadInfo, MeshArrays, RunOutput } from './protocol';
 
 export class GeoshiftError extends Error {
@@ -32,7 +32,7 @@ export class GeoshiftApi {
   }
 
   /** The core's filter presets: the one source of their values. */
-  presets(): FilterPreset[] {
+  presets(): CorePreset[] {
     return this.module.presets();
   }
 
