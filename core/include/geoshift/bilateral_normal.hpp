@@ -25,7 +25,7 @@ struct BilateralNormalOptions {
   // σ_s on |n_i − n_j| (unitless); 0.35 is the value most comparisons use.
   double sigmaRange = 0.35;
   FaceNeighborhood neighborhood = FaceNeighborhood::Vertex;
-  VertexUpdateOptions vertexUpdate = {10, false, false, FlipGuard::Input, {}};
+  VertexUpdateOptions vertexUpdate = {10, false, false, FlipGuard::Input, {}, {}};
 };
 
 struct BilateralNormalResult {

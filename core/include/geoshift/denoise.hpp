@@ -68,7 +68,7 @@ struct DenoiseOptions {
   TaubinOptions supportSmoothing;        // the support the neighbourhoods are found on (10 steps)
   // Taubin steps before the passes; with several candidates the risk estimate picks one (each
   // costs as much as the others: 5 alone scores as well as {2, 10} on the pairs, docs/denoising.md).
-  std::vector<int> presmoothing = {5};
+  std::vector<int> presmoothing = {2, 10};
   int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk
   int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
