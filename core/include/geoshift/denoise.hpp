@@ -66,8 +66,8 @@ struct DenoiseOptions {
   std::vector<double> rangeBandwidths = {0.35};
   FaceNeighborhoodOptions neighborhood;  // r = 1.75 AEL, h_s = 0.6 AEL, on the support
   TaubinOptions supportSmoothing;        // the support the neighbourhoods are found on (10 steps)
-  // Taubin steps before the passes; with several candidates the risk estimate picks one (each
-  // costs as much as the others: 5 alone scores as well as {2, 10} on the pairs, docs/denoising.md).
+  // Candidate Taubin steps before the passes; the risk estimate picks one (and its pass count).
+  // The candidates race: one clearly behind the leader stops early (docs/denoising.md#pipeline).
   std::vector<int> presmoothing = {2, 10};
   int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk
