@@ -1,4 +1,4 @@
-// The default denoiser (denoise.hpp; docs/denoising.md#pipeline).
+// The default denoiser (denoise.hpp; docs/denoising.md#the-default-pipeline).
 //
 // Candidates x(k, t): k Taubin steps, then t passes of [blurring mean shift of the face normals →
 // vertex update]. For each, Stein's unbiased risk estimate of the error along the vertex normals is

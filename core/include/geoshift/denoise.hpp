@@ -67,7 +67,7 @@ struct DenoiseOptions {
   FaceNeighborhoodOptions neighborhood;  // r = 1.75 AEL, h_s = 0.6 AEL, on the support
   TaubinOptions supportSmoothing;        // the support the neighbourhoods are found on (10 steps)
   // Candidate Taubin steps before the passes; the risk estimate picks one (and its pass count).
-  // The candidates race: one clearly behind the leader stops early (docs/denoising.md#pipeline).
+  // The candidates race: one clearly behind the leader stops early (docs/denoising.md#the-default-pipeline).
   std::vector<int> presmoothing = {2, 10};
   int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk

@@ -1,5 +1,5 @@
 #pragma once
-// Blurring mean shift of face normals over surface neighbourhoods (docs/denoising.md#pipeline):
+// Blurring mean shift of face normals over surface neighbourhoods (docs/denoising.md#the-default-pipeline):
 // the normal-filtering half of the default denoiser. Each face's neighbourhood is found once on a
 // support surface (faces reached across edges within r, or a log map from its centroid) and
 // reused by every pass.
@@ -17,7 +17,7 @@ struct FaceNeighborhoodOptions {
   double spatialBandwidth = 0.6;  // h_s of the spatial Gaussian, in average edge lengths
   // Distances from log maps on the support (geodesic) instead of straight distances between
   // centroids of faces reached across edges. Within r = 1.75 AEL of a smoothed support the two
-  // differ little and the straight ones cost a fraction (docs/denoising.md#neighbourhoods).
+  // differ little and the straight ones cost a fraction (docs/denoising.md#the-default-pipeline).
   bool geodesic = false;
   ParallelOptions parallel;
 };
