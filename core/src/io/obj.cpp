@@ -64,7 +64,7 @@ std::string vertexLine(const Vec3& p, const Eigen::Vector4d* color) {
 
 }  // namespace
 
-Document readObj(const std::string& path) {
+Document readObj(const std::string& path, const ReadOptions& options) {
   auto source = std::make_shared<DocumentSource>();
   source->format = FileFormat::Obj;
   ObjSource& src = source->obj;
@@ -90,6 +90,9 @@ Document readObj(const std::string& path) {
     fail(path, "cannot read OBJ: " + err);
   }
   scanVertexLines(path, src.text, src);
+  if (src.vertexLines.size() > options.maxVertices)
+    fail(path, "the file has " + std::to_string(src.vertexLines.size()) + " vertices, more than the limit of " +
+                   std::to_string(options.maxVertices) + " (raise it with --max-vertices)");
   const auto& attrib = reader.GetAttrib();
   const size_t nv = src.vertexLines.size();
   if (attrib.vertices.size() / 3 != nv)
