@@ -1,9 +1,11 @@
 // The CLI on PLY and STL files: read by extension, written by extension, damaged input reported
-// with the reader's message and nothing written, and the --max-vertices limit.
+// with the reader's message and nothing written, and the --max-vertices limit (also on a GLB whose
+// accessor without data declares 400 million vertices).
 #include <catch2/catch.hpp>
 
 #include "cli_support.hpp"
 #include "geoshift/io.hpp"
+#include "glb_bytes.hpp"
 
 using namespace geoshift;
 using namespace geoshift::test;
@@ -49,3 +51,19 @@ TEST_CASE("cli: PLY and STL in, PLY and STL out, errors as messages", "[cli][io]
   CHECK(geoshiftCli("--max-vertices 5 info " + q(dir / "in.ply")).code == 0);
 }
 
+
+TEST_CASE("cli: a tiny GLB declaring 400 million vertices is refused at once", "[cli][io][gltf]") {
+  const auto dir = tempDir("cli-glb-limit");
+  const nlohmann::json j = nlohmann::json::parse(R"({
+    "asset": {"version": "2.0"},
+    "accessors": [{"componentType": 5126, "count": 400000000, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}]})");
+  spit(dir / "zeros.glb", glbBytes(j, ""));
+  Run r = geoshiftCli("info " + q(dir / "zeros.glb"));
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Contains("zeros.glb: mesh 0 '' primitive 0 POSITION (accessor 0) declares 400000000 vertices, more than the "
+                             "limit of 50000000 (raise it with --max-vertices)"));
+  r = geoshiftCli("info " + q(dir / "zeros.glb") + " --max-vertices 1000");
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Contains("more than the limit of 1000"));
+}
