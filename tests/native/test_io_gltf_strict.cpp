@@ -119,6 +119,14 @@ TEST_CASE("glTF: accessors and buffer views that do not fit, and short strides, 
   CHECK_THAT(read("stride.glb", j),
              Contains("POSITION (accessor 0): buffer view 0 has byteStride 8, shorter than the accessor's 12-byte elements"));
   j = triangle();
+  j["accessors"][0]["sparse"] = json::parse(
+      R"({"count": 1, "indices": {"bufferView": 1, "componentType": 5120}, "values": {"bufferView": 0}})");
+  CHECK_THAT(read("sparse-type.glb", j),
+             Contains("POSITION (sparse accessor 0): sparse indices have component type 5120; they must be unsigned"));
+  j["accessors"][0]["sparse"]["indices"]["componentType"] = 5123;
+  j["accessors"][0]["sparse"]["count"] = 4;
+  CHECK_THAT(read("sparse-count.glb", j), Contains("POSITION (sparse accessor 0): 4 sparse elements for 3"));
+  j = triangle();
   j["accessors"][1]["componentType"] = 5122;  // SHORT: signed, not allowed for indices
   CHECK_THAT(read("index-type.glb", j),
              Contains("mesh 0 'Tri' primitive 0: indices accessor 1 has component type 5122; indices must be unsigned byte "

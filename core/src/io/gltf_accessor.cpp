@@ -127,7 +127,10 @@ std::vector<double> readAccessor(const tinygltf::Model& model, int index, const 
     const size_t n = static_cast<size_t>(std::max(acc.sparse.count, 0));
     const int ict = acc.sparse.indices.componentType;
     const int isz = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(ict));
-    if (isz <= 0 || isz > 4) fail(path, at + ": invalid sparse index type");
+    if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(path, at + ": sparse indices have component type " + std::to_string(ict) +
+                     "; they must be unsigned byte, short or int");
     const size_t elem = static_cast<size_t>(l.components) * l.componentSize;
     if (n > acc.count) fail(path, at + ": " + std::to_string(n) + " sparse elements for " + std::to_string(acc.count));
     checkRange(model, acc.sparse.indices.bufferView, acc.sparse.indices.byteOffset, n * isz, path, at);
@@ -139,9 +142,10 @@ std::vector<double> readAccessor(const tinygltf::Model& model, int index, const 
     const unsigned char* val =
         model.buffers[vbv.buffer].data.data() + vbv.byteOffset + acc.sparse.values.byteOffset;
     for (size_t s = 0; s < n; ++s) {
-      const auto target = static_cast<size_t>(loadComponent(idx + s * isz, ict));
-      if (target >= acc.count)
-        fail(path, at + ": sparse index " + std::to_string(target) + " out of range");
+      const double t = loadComponent(idx + s * isz, ict);
+      if (!(t >= 0 && t < static_cast<double>(acc.count)))
+        fail(path, at + ": sparse index " + formatNumber(t) + " out of range (" + std::to_string(acc.count) + " elements)");
+      const auto target = static_cast<size_t>(t);
       for (int k = 0; k < l.components; ++k)
         out[target * l.components + k] = convert(val + s * elem + k * l.componentSize);
     }

@@ -283,7 +283,9 @@ std::vector<std::string> writePly(const Document& document, const std::string& p
       }));
     }
   const size_t colorBegin = allNormals ? 6 : 3, colorEnd = cols.size();
-  for (const auto& [name, dim] : extras) {
+  for (const auto& extra : extras) {
+    const std::string& name = extra.first;  // not a structured binding: lambdas below capture it
+    const int dim = extra.second;
     std::string base = !name.empty() && name[0] == '_' ? name.substr(1) : name;
     if (base.empty() || base.find_first_of(" \t\r\n") != std::string::npos) {
       warnings.push_back(path + ": attribute '" + name + "' not written: not a valid PLY property name");
