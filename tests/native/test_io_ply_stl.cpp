@@ -11,6 +11,7 @@
 #include "geoshift/error.hpp"
 #include "geoshift/io.hpp"
 #include "geoshift/shapes.hpp"
+#include "geoshift/terrain.hpp"
 #include "support.hpp"
 
 using namespace geoshift;
@@ -360,4 +361,18 @@ TEST_CASE("real PLY meshes", "[io][ply][data]") {
   CHECK(c.faces.size() == 1);
   REQUIRE(c.colors.size() == 3);
   for (const auto& col : c.colors) CHECK(((col.array() >= 0) && (col.array() <= 1)).all());
+}
+
+TEST_CASE("PLY point sets go through the same parser: its messages and a class that is no integer", "[io][ply][terrain]") {
+  const auto dir = tempDir("io-ply-points");
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                           "property float class\nend_header\n";
+  spit(dir / "ok.ply", head + "0 0 0 2\n1 0 0 5\n");
+  CHECK(readPlyPoints((dir / "ok.ply").string()).classes == std::vector<int>{2, 5});
+  spit(dir / "class.ply", head + "0 0 0 2\n1 0 0 1e300\n");
+  CHECK_THAT(errorOf([&] { readPlyPoints((dir / "class.ply").string()); }),
+             Contains("class.ply:10: vertex 1: class '1e+300' is not an integer"));
+  spit(dir / "word.ply", head + "0 0 0 2\n1 zero 0 5\n");
+  CHECK_THAT(errorOf([&] { readPlyPoints((dir / "word.ply").string()); }),
+             Contains("word.ply:10: vertex 1: 'zero' is not a number (property 'y')"));
 }

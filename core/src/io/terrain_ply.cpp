@@ -59,7 +59,12 @@ TerrainPoints readPlyPoints(const std::string& path) {
       rec.end();
       pts.positions[i] = Vec3(row[ix], row[iy], row[iz]);
       if (!pts.positions[i].allFinite()) rec.fail("NaN or infinite coordinate");
-      if (ic >= 0) pts.classes[i] = static_cast<int>(row[ic]);
+      if (ic >= 0) {
+        // A float class property may hold anything; converting it unchecked would be undefined.
+        if (!(row[ic] >= -2147483648.0 && row[ic] <= 2147483647.0) || row[ic] != std::floor(row[ic]))
+          rec.fail("class '" + io::formatNumber(row[ic]) + "' is not an integer");
+        pts.classes[i] = static_cast<int>(row[ic]);
+      }
       if (color) pts.colors[i] = (Eigen::Vector3d(row[ir], row[ig], row[ib]) * colorScale).cwiseMax(0.0).cwiseMin(1.0);
     }
     if (ic >= 0) pts.notes.push_back("classes from the PLY property '" + e.props[ic].name + "'");
