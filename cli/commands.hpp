@@ -30,7 +30,9 @@ Command addDenoise(CLI::App& app);
 
 // --- shared by the commands ---
 
-// Reads a file, printing its pass-through warnings to stderr.
+// The options every input file is read with (--max-vertices).
+ReadOptions& readOptions();
+// Reads a file with readOptions(), printing its pass-through warnings to stderr.
 Document load(const std::string& path);
 // Writes atomically, printing the writer's warnings; the summary line names the output.
 void save(const Document& doc, const std::string& path);

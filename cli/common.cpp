@@ -5,8 +5,13 @@
 
 namespace geoshift::cli {
 
+ReadOptions& readOptions() {
+  static ReadOptions options;
+  return options;
+}
+
 Document load(const std::string& path) {
-  Document doc = readDocument(path);
+  Document doc = readDocument(path, readOptions());
   for (const std::string& w : doc.warnings) std::cerr << "geoshift: warning: " << w << "\n";
   return doc;
 }

@@ -17,7 +17,7 @@ struct InOut {
 };
 
 void addInOut(CLI::App* sub, InOut& io) {
-  sub->add_option("IN", io.in, "input mesh (.gltf .glb .obj .off)")->required();
+  sub->add_option("IN", io.in, "input mesh (.gltf .glb .obj .off .ply .stl)")->required();
   sub->add_option("-o,--output", io.out, "output mesh; format from its extension")->required();
 }
 

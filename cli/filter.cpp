@@ -69,7 +69,7 @@ Command addFilter(CLI::App& app) {
   auto a = std::make_shared<FilterArgs>();
   CLI::App* sub = app.add_subcommand(
       "filter", "Riemannian mean shift (--mode ms) or blurring mean shift (--mode bms) of a vertex signal");
-  sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off)")->required();
+  sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off .ply .stl)")->required();
   sub->add_option("-o,--output", a->out, "output mesh; format from its extension")->required();
   sub->add_option("--signal", a->signal,
                   "color (COLOR_0), normal (vertex normals), curvature (absolute), terrain (height above ground "

@@ -29,7 +29,7 @@ struct Source {
 };
 
 void addSourceOptions(CLI::App* sub, Source& s, bool vertexOnly) {
-  sub->add_option("IN", s.file, "mesh file (.gltf .glb .obj .off)")->required();
+  sub->add_option("IN", s.file, "mesh file (.gltf .glb .obj .off .ply .stl)")->required();
   sub->add_option("--part", s.part, "which mesh of the file (0-based, as `geoshift info` lists them)")->capture_default_str();
   sub->add_flag("--absolute", s.absolute, "lengths in the mesh's units instead of multiples of the average edge length");
   if (vertexOnly) {

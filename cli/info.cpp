@@ -16,6 +16,8 @@ const char* formatName(FileFormat f) {
     case FileFormat::Glb: return "glTF 2.0 binary (.glb)";
     case FileFormat::Obj: return "Wavefront OBJ";
     case FileFormat::Off: return "OFF";
+    case FileFormat::Ply: return "PLY";
+    case FileFormat::Stl: return "STL";
   }
   return "?";
 }
@@ -69,7 +71,7 @@ Command addInfo(CLI::App& app) {
   auto file = std::make_shared<std::string>();
   auto levels = std::make_shared<int>(0);
   CLI::App* sub = app.add_subcommand("info", "Counts, average edge length, bounds, boundary loops, defects, attributes");
-  sub->add_option("FILE", *file, "mesh file (.gltf .glb .obj .off)")->required();
+  sub->add_option("FILE", *file, "mesh file (.gltf .glb .obj .off .ply .stl)")->required();
   sub->add_option("--levels", *levels, "also print the vertex count after each of this many wavelet levels")
       ->check(CLI::NonNegativeNumber);
   return {sub, [file, levels] {

@@ -2,14 +2,20 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <limits>
 
 #include "commands.hpp"
 #include "geoshift/error.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"geoshift: filters for signals on triangle meshes (glTF, OBJ, OFF)"};
+  CLI::App app{"geoshift: filters for signals on triangle meshes (glTF, OBJ, OFF, PLY, STL)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "geoshift 0.1.0");
+  // Before or after the subcommand: subcommands pass options they do not know up to here.
+  app.add_option("--max-vertices", geoshift::cli::readOptions().maxVertices,
+                 "refuse input files declaring more vertices than this, before allocating (default 50000000)")
+      ->check(CLI::Range(size_t{1}, std::numeric_limits<size_t>::max()));
+  app.fallthrough();
   using namespace geoshift::cli;
   const std::vector<Command> commands = {addInfo(app), addNoise(app), addSmooth(app),
                                          addCurvature(app), addCompare(app),  addGeodesic(app),

@@ -63,7 +63,7 @@ Command addWavelet(CLI::App& app) {
   auto a = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
       "wavelet", "Multiresolution smoothing/enhancement of positions and colors (lifting wavelets, detail gains alpha)");
-  sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off)")->required();
+  sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off .ply .stl)")->required();
   sub->add_option("-o,--output", a->out, "output mesh; format from its extension")->required();
   sub->add_option("--levels", a->levels, "analysis levels (each removes ~25% of the vertices)")
       ->capture_default_str();

@@ -16,6 +16,8 @@ const char* formatName(FileFormat f) {
     case FileFormat::Glb: return "glb";
     case FileFormat::Obj: return "obj";
     case FileFormat::Off: return "off";
+    case FileFormat::Ply: return "ply";
+    case FileFormat::Stl: return "stl";
   }
   return "?";
 }

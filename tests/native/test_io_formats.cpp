@@ -59,6 +59,13 @@ TEST_CASE("OBJ: colors, normals, triangulation, byte-exact write back", "[io][ob
   spit(dir / "missing-vertex.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
   CHECK_THAT(errorOf([&] { readDocument((dir / "missing-vertex.obj").string()); }),
              Contains("missing-vertex.obj: face 1 (group '') references vertex 7 but the file has 3 vertices"));
+  // Found by fuzz_obj (heap overflow reading normal 8 of 2): vn and vt references are checked too.
+  spit(dir / "normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 1\nvt 0 0\nf 1/1/8 3/1/1 2/1/1\n");
+  CHECK_THAT(errorOf([&] { readDocument((dir / "normal.obj").string()); }),
+             Contains("normal.obj: face 1 (group '') references normal 8 but the file has 2 normals"));
+  spit(dir / "uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 3/1 2/5\n");
+  CHECK_THAT(errorOf([&] { readDocument((dir / "uv.obj").string()); }),
+             Contains("uv.obj: face 1 (group '') references texture coordinate 5 but the file has 1"));
   spit(dir / "short.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n");
   CHECK_THAT(errorOf([&] { readDocument((dir / "short.obj").string()); }),
              Contains("short.obj:2: expected 3 coordinates for vertex 2"));

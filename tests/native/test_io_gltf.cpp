@@ -230,8 +230,8 @@ TEST_CASE("bad glTF input is reported clearly", "[io][errors]") {
   const auto dir = test::tempDir("io-bad-gltf");
   const std::string missing = (dir / "missing.glb").string();
   CHECK_THAT(errorOf([&] { readDocument(missing); }), Contains(missing) && Contains("not found"));
-  CHECK_THAT(errorOf([&] { readDocument((dir / "mesh.stl").string()); }),
-             Contains("mesh.stl") && Contains("unknown file extension '.stl'"));
+  CHECK_THAT(errorOf([&] { readDocument((dir / "mesh.3ds").string()); }),
+             Contains("mesh.3ds") && Contains("unknown file extension '.3ds'"));
 
   spit(dir / "corrupt.glb", std::string("glTF\x02\0\0\0\xff\0\0\0garbage", 19));
   CHECK_THAT(errorOf([&] { readDocument((dir / "corrupt.glb").string()); }),

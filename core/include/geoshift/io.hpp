@@ -1,6 +1,6 @@
 #pragma once
 // Reading and writing mesh files: glTF 2.0 (.gltf/.glb) through tinygltf, OBJ through tinyobjloader,
-// OFF. Format chosen by file extension. Writing back into the file's own format keeps everything
+// OFF, PLY (ascii and binary) and STL (ascii and binary). Format chosen by file extension. Writing back into the file's own format keeps everything
 // that is not geometry as it was; writes are atomic (temporary file, then rename), so a failure
 // never leaves a partial output.
 #include <memory>
@@ -13,13 +13,13 @@
 
 namespace geoshift {
 
-enum class FileFormat { Gltf, Glb, Obj, Off };
+enum class FileFormat { Gltf, Glb, Obj, Off, Ply, Stl };
 
-// Throws InputError naming the path when the extension is none of .gltf .glb .obj .off.
+// Throws InputError naming the path when the extension is none of .gltf .glb .obj .off .ply .stl.
 FileFormat formatFromPath(const std::string& path);
 
-// A per-vertex channel to write beside the geometry (glTF: accessor "_NAME"; OBJ/OFF: not stored,
-// reported as a warning).
+// A per-vertex channel to write beside the geometry (glTF: accessor "_NAME"; PLY: vertex property
+// NAME without the leading '_', read back as "_NAME"; OBJ/OFF/STL: not stored, reported as a warning).
 struct ExtraAttribute {
   std::string name;  // e.g. "_CURVATURE"; glTF custom attributes must start with '_'
   int dim = 1;
@@ -48,16 +48,24 @@ struct Document {
   std::shared_ptr<DocumentSource> source;
 };
 
-// Throws InputError naming the file and what/where (mesh, primitive, accessor, line) on unreadable
-// or unsupported content: Draco/meshopt compression, non-finite values, indices out of range.
+struct ReadOptions {
+  // A file declaring more vertices than this (or a glTF accessor without data declaring more
+  // elements) is refused before anything is allocated for them. CLI: --max-vertices.
+  size_t maxVertices = 50'000'000;
+};
+
+// Throws InputError naming the file and what/where (mesh, primitive, accessor, element, line) on
+// unreadable or unsupported content: Draco/meshopt compression, non-finite values, indices out of
+// range, counts the file cannot hold, more vertices than options.maxVertices.
 // Sparse accessors are applied (and written back densely). Points, lines, strips and fans are kept
-// untouched and reported in `warnings`. A file with no triangle is an error.
-Document readDocument(const std::string& path);
+// untouched and reported in `warnings`. A file with no triangle is an error. See docs/io.md.
+Document readDocument(const std::string& path, const ReadOptions& options = {});
 
 // Writes the document; positions, normals, colors and extras of each part replace the file's.
 // Same format as read: everything else is kept (materials, textures, nodes, extras, OBJ groups and
-// texture coordinates). Another format: geometry, normals, colors (and extras into glTF) only, in
-// world space for OBJ/OFF, with a warning returned.
+// texture coordinates). Another format: geometry, normals, colors (and extras into glTF and PLY)
+// only, in world space for OBJ/OFF/PLY/STL, with a warning returned. PLY is written binary little
+// endian; STL binary (positions only).
 // Throws InputError (nothing written) when a part's array sizes do not match its positions.
 std::vector<std::string> writeDocument(const Document& document, const std::string& path);
 

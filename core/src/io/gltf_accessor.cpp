@@ -34,6 +34,8 @@ double normalizeComponent(double c, int componentType) {
   return c;
 }
 
+// Does [begin, begin + bytes) lie inside buffer view `view`, which lies inside its buffer?
+// Written with subtractions only: declared offsets and counts may be anything.
 void checkRange(const tinygltf::Model& model, int view, size_t begin, size_t bytes,
                 const std::string& path, const std::string& where) {
   if (view < 0 || static_cast<size_t>(view) >= model.bufferViews.size())
@@ -41,10 +43,13 @@ void checkRange(const tinygltf::Model& model, int view, size_t begin, size_t byt
   const auto& bv = model.bufferViews[view];
   if (bv.buffer < 0 || static_cast<size_t>(bv.buffer) >= model.buffers.size())
     fail(path, where + ": buffer view " + std::to_string(view) + " names a missing buffer");
-  if (bv.byteOffset + bv.byteLength > model.buffers[bv.buffer].data.size())
-    fail(path, where + ": buffer view " + std::to_string(view) + " extends past the end of buffer " +
-                   std::to_string(bv.buffer));
-  if (begin + bytes > bv.byteLength)
+  const size_t size = model.buffers[bv.buffer].data.size();
+  if (bv.byteLength > size || bv.byteOffset > size - bv.byteLength)
+    fail(path, where + ": buffer view " + std::to_string(view) + " (bytes " + std::to_string(bv.byteOffset) +
+                   " to " + formatNumber(static_cast<double>(bv.byteOffset) + static_cast<double>(bv.byteLength)) +
+                   ") extends past the end of buffer " + std::to_string(bv.buffer) + " (" + std::to_string(size) +
+                   " bytes)");
+  if (bytes > bv.byteLength || begin > bv.byteLength - bytes)
     fail(path, where + ": data extends past the end of buffer view " + std::to_string(view));
 }
 
@@ -65,20 +70,44 @@ AccessorLayout accessorLayout(const tinygltf::Model& model, int index, const std
   if (acc.bufferView < 0) return l;
   checkRange(model, acc.bufferView, 0, 0, path, at);
   const auto& bv = model.bufferViews[acc.bufferView];
-  const int stride = acc.ByteStride(bv);
-  if (stride <= 0) fail(path, at + ": invalid byteStride");
-  l.buffer = bv.buffer;
-  l.stride = static_cast<size_t>(stride);
-  l.offset = bv.byteOffset + acc.byteOffset;
   const size_t element = static_cast<size_t>(l.components) * l.componentSize;
-  if (acc.count > 0) checkRange(model, acc.bufferView, acc.byteOffset, (acc.count - 1) * l.stride + element, path, at);
+  // glTF 2.0 schema: byteStride in [4, 252]; a stride shorter than one element overlaps elements.
+  if (bv.byteStride != 0 && (bv.byteStride < 4 || bv.byteStride > 252))
+    fail(path, at + ": buffer view " + std::to_string(acc.bufferView) + " has byteStride " +
+                   std::to_string(bv.byteStride) + " (must be 4 to 252)");
+  if (bv.byteStride != 0 && bv.byteStride < element)
+    fail(path, at + ": buffer view " + std::to_string(acc.bufferView) + " has byteStride " +
+                   std::to_string(bv.byteStride) + ", shorter than the accessor's " + std::to_string(element) +
+                   "-byte elements");
+  l.buffer = bv.buffer;
+  l.stride = bv.byteStride != 0 ? bv.byteStride : element;
+  l.offset = bv.byteOffset + acc.byteOffset;
+  if (acc.count > 0) {
+    // count elements need (count - 1) * stride + element bytes from byteOffset.
+    const bool fits = acc.byteOffset <= bv.byteLength && element <= bv.byteLength - acc.byteOffset &&
+                      acc.count - 1 <= (bv.byteLength - acc.byteOffset - element) / l.stride;
+    if (!fits)
+      fail(path, at + ": " + std::to_string(acc.count) + " elements of " + std::to_string(element) +
+                     " bytes (stride " + std::to_string(l.stride) + ") from byte " + std::to_string(acc.byteOffset) +
+                     " need " +
+                     formatNumber(static_cast<double>(acc.byteOffset) +
+                                  static_cast<double>(acc.count - 1) * static_cast<double>(l.stride) +
+                                  static_cast<double>(element)) +
+                     " bytes, but buffer view " + std::to_string(acc.bufferView) + " has " +
+                     std::to_string(bv.byteLength));
+  }
   return l;
 }
 
 std::vector<double> readAccessor(const tinygltf::Model& model, int index, const std::string& path,
-                                 const std::string& where, bool normalize) {
+                                 const std::string& where, bool normalize, size_t maxWithoutData) {
   const AccessorLayout l = accessorLayout(model, index, path, where);
   const auto& acc = model.accessors[index];
+  // Without a buffer view the elements are zeros: nothing in the file bounds their count.
+  if (l.buffer < 0 && acc.count > maxWithoutData)
+    fail(path, where + " (accessor " + std::to_string(index) + "): no buffer view and " + std::to_string(acc.count) +
+                   " elements declared, more than the limit of " + std::to_string(maxWithoutData) +
+                   " (raise it with --max-vertices)");
   const bool norm = normalize || acc.normalized;
   const int ct = acc.componentType;
   auto convert = [&](const unsigned char* p) {
@@ -98,8 +127,12 @@ std::vector<double> readAccessor(const tinygltf::Model& model, int index, const 
     const size_t n = static_cast<size_t>(std::max(acc.sparse.count, 0));
     const int ict = acc.sparse.indices.componentType;
     const int isz = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(ict));
-    if (isz <= 0 || isz > 4) fail(path, at + ": invalid sparse index type");
+    if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(path, at + ": sparse indices have component type " + std::to_string(ict) +
+                     "; they must be unsigned byte, short or int");
     const size_t elem = static_cast<size_t>(l.components) * l.componentSize;
+    if (n > acc.count) fail(path, at + ": " + std::to_string(n) + " sparse elements for " + std::to_string(acc.count));
     checkRange(model, acc.sparse.indices.bufferView, acc.sparse.indices.byteOffset, n * isz, path, at);
     checkRange(model, acc.sparse.values.bufferView, acc.sparse.values.byteOffset, n * elem, path, at);
     const auto& ibv = model.bufferViews[acc.sparse.indices.bufferView];
@@ -109,9 +142,10 @@ std::vector<double> readAccessor(const tinygltf::Model& model, int index, const 
     const unsigned char* val =
         model.buffers[vbv.buffer].data.data() + vbv.byteOffset + acc.sparse.values.byteOffset;
     for (size_t s = 0; s < n; ++s) {
-      const auto target = static_cast<size_t>(loadComponent(idx + s * isz, ict));
-      if (target >= acc.count)
-        fail(path, at + ": sparse index " + std::to_string(target) + " out of range");
+      const double t = loadComponent(idx + s * isz, ict);
+      if (!(t >= 0 && t < static_cast<double>(acc.count)))
+        fail(path, at + ": sparse index " + formatNumber(t) + " out of range (" + std::to_string(acc.count) + " elements)");
+      const auto target = static_cast<size_t>(t);
       for (int k = 0; k < l.components; ++k)
         out[target * l.components + k] = convert(val + s * elem + k * l.componentSize);
     }

@@ -31,9 +31,11 @@ std::string meshLabel(const nlohmann::json& meshes, size_t m) {
   return "mesh " + std::to_string(m) + " '" + name + "'";
 }
 
+void checkReferences(const std::string& path, const nlohmann::json& j);
+
 // Compressed content is found in the JSON before tinygltf sees it: tinygltf may fail on a meshopt
 // fallback buffer without a URI, which would hide the real reason.
-void rejectCompression(const std::string& path, const std::string& jsonText) {
+void checkJson(const std::string& path, const std::string& jsonText) {
   const auto j = nlohmann::json::parse(jsonText, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return;  // tinygltf reports the syntax error
   const auto meshes = j.value("meshes", nlohmann::json::array());
@@ -59,6 +61,83 @@ void rejectCompression(const std::string& path, const std::string& jsonText) {
     for (const auto& ext : j.value(key, nlohmann::json::array()))
       if (ext.is_string() && isCompression(ext.get<std::string>()))
         fail(path, "the file declares " + ext.get<std::string>() + " in " + key + kCompressedHint);
+  checkReferences(path, j);
+}
+
+// glTF 2.0 schema: every reference to another object is an integer >= 0 naming an existing one.
+// tinygltf reads such fields without checking them (a negative `indices` would read as "no
+// indices"), so they are checked here, on the JSON, with the referring object named.
+void checkReferences(const std::string& path, const nlohmann::json& j) {
+  auto arr = [&](const char* key) {
+    const auto it = j.find(key);
+    return it != j.end() && it->is_array() ? *it : nlohmann::json::array();
+  };
+  const nlohmann::json meshes = arr("meshes"), accessors = arr("accessors"), views = arr("bufferViews"),
+                       buffers = arr("buffers"), nodes = arr("nodes"), scenes = arr("scenes"),
+                       materials = arr("materials"), images = arr("images"), textures = arr("textures"),
+                       samplers = arr("samplers"), cameras = arr("cameras"), skins = arr("skins");
+  auto check = [&](const nlohmann::json& v, const std::string& what, const nlohmann::json& targets,
+                   const char* kind) {
+    const std::string have = " (the file has " + std::to_string(targets.size()) + " " + kind + ")";
+    if (!v.is_number_integer() && !v.is_number_unsigned())
+      fail(path, what + " is " + v.dump().substr(0, 40) + ", not the index of one of the " + kind + have);
+    if (v.is_number_integer() && v.get<long long>() < 0)
+      fail(path, what + " is " + v.dump() + ": a negative index names no object" + have);
+    if (v.get<unsigned long long>() >= targets.size())
+      fail(path, what + " is " + v.dump() + ", which names no object" + have);
+  };
+  auto field = [&](const nlohmann::json& obj, const char* key, const std::string& what,
+                   const nlohmann::json& targets, const char* kind) {
+    if (obj.is_object() && obj.contains(key)) check(obj[key], what + " " + key, targets, kind);
+  };
+  auto list = [&](const nlohmann::json& obj, const char* key, const std::string& what,
+                  const nlohmann::json& targets, const char* kind) {
+    if (!obj.is_object() || !obj.contains(key) || !obj[key].is_array()) return;
+    for (size_t i = 0; i < obj[key].size(); ++i)
+      check(obj[key][i], what + " " + key + "[" + std::to_string(i) + "]", targets, kind);
+  };
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    if (!meshes[m].is_object() || !meshes[m].contains("primitives") || !meshes[m]["primitives"].is_array()) continue;
+    const auto& prims = meshes[m]["primitives"];
+    for (size_t p = 0; p < prims.size(); ++p) {
+      const std::string what = meshLabel(meshes, m) + " primitive " + std::to_string(p);
+      field(prims[p], "indices", what, accessors, "accessors");
+      field(prims[p], "material", what, materials, "materials");
+      if (prims[p].is_object() && prims[p].contains("attributes") && prims[p]["attributes"].is_object())
+        for (const auto& [semantic, v] : prims[p]["attributes"].items())
+          check(v, what + " attribute " + semantic, accessors, "accessors");
+      if (prims[p].is_object() && prims[p].contains("targets") && prims[p]["targets"].is_array())
+        for (size_t t = 0; t < prims[p]["targets"].size(); ++t)
+          if (prims[p]["targets"][t].is_object())
+            for (const auto& [semantic, v] : prims[p]["targets"][t].items())
+              check(v, what + " morph target " + std::to_string(t) + " " + semantic, accessors, "accessors");
+    }
+  }
+  for (size_t a = 0; a < accessors.size(); ++a) {
+    const std::string what = "accessor " + std::to_string(a);
+    field(accessors[a], "bufferView", what, views, "buffer views");
+    if (accessors[a].is_object() && accessors[a].contains("sparse") && accessors[a]["sparse"].is_object()) {
+      const auto& sp = accessors[a]["sparse"];
+      for (const char* part : {"indices", "values"})
+        if (sp.contains(part)) field(sp[part], "bufferView", what + " sparse " + part, views, "buffer views");
+    }
+  }
+  for (size_t v = 0; v < views.size(); ++v)
+    field(views[v], "buffer", "buffer view " + std::to_string(v), buffers, "buffers");
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    const std::string what = "node " + std::to_string(n);
+    field(nodes[n], "mesh", what, meshes, "meshes");
+    field(nodes[n], "camera", what, cameras, "cameras");
+    field(nodes[n], "skin", what, skins, "skins");
+    list(nodes[n], "children", what, nodes, "nodes");
+  }
+  for (size_t sc = 0; sc < scenes.size(); ++sc) list(scenes[sc], "nodes", "scene " + std::to_string(sc), nodes, "nodes");
+  if (j.contains("scene")) check(j["scene"], "the default scene", scenes, "scenes");
+  for (size_t i = 0; i < images.size(); ++i) field(images[i], "bufferView", "image " + std::to_string(i), views, "buffer views");
+  for (size_t t = 0; t < textures.size(); ++t) {
+    field(textures[t], "source", "texture " + std::to_string(t), images, "images");
+    field(textures[t], "sampler", "texture " + std::to_string(t), samplers, "samplers");
+  }
 }
 
 // Images are kept as the bytes of the file: decoding and re-encoding would change them.
@@ -132,7 +211,7 @@ int sharedAttribute(const tinygltf::Mesh& mesh, const GltfPartBinding& b, const 
 
 }  // namespace
 
-Document readGltf(const std::string& path, FileFormat format) {
+Document readGltf(const std::string& path, FileFormat format, const ReadOptions& options) {
   const std::string bytes = readWholeFile(path);
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
   if (binary) {
@@ -140,10 +219,10 @@ Document readGltf(const std::string& path, FileFormat format) {
     if (bytes.size() >= 20) {
       uint32_t len = 0;
       std::memcpy(&len, bytes.data() + 12, 4);
-      if (20 + static_cast<size_t>(len) <= bytes.size()) rejectCompression(path, bytes.substr(20, len));
+      if (20 + static_cast<size_t>(len) <= bytes.size()) checkJson(path, bytes.substr(20, len));
     }
   } else {
-    rejectCompression(path, bytes);
+    checkJson(path, bytes);
   }
 
   auto source = std::make_shared<DocumentSource>();
@@ -218,7 +297,11 @@ Document readGltf(const std::string& path, FileFormat format) {
     }
     const auto& posAcc = model.accessors.at(b.positionAccessor);
     if (componentCount(posAcc.type) != 3) fail(path, part.label + ": POSITION is not VEC3");
-    const auto pos = readAccessor(model, b.positionAccessor, path, part.label + " POSITION");
+    if (posAcc.count > options.maxVertices)
+      fail(path, part.label + " POSITION (accessor " + std::to_string(b.positionAccessor) + ") declares " +
+                     std::to_string(posAcc.count) + " vertices, more than the limit of " +
+                     std::to_string(options.maxVertices) + " (raise it with --max-vertices)");
+    const auto pos = readAccessor(model, b.positionAccessor, path, part.label + " POSITION", false, options.maxVertices);
     b.vertexCount = posAcc.count;
     part.positions.resize(b.vertexCount);
     for (size_t v = 0; v < b.vertexCount; ++v) {
@@ -235,9 +318,15 @@ Document readGltf(const std::string& path, FileFormat format) {
                                  "' primitive " + std::to_string(p);
       std::vector<double> idx;
       if (prim.indices >= 0) {
-        if (componentCount(model.accessors.at(prim.indices).type) != 1)
-          fail(path, plabel + ": indices accessor is not SCALAR");
-        idx = readAccessor(model, prim.indices, path, plabel + " indices");
+        const auto& ia = model.accessors.at(prim.indices);
+        if (componentCount(ia.type) != 1) fail(path, plabel + ": indices accessor " + std::to_string(prim.indices) + " is not SCALAR");
+        if (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+          fail(path, plabel + ": indices accessor " + std::to_string(prim.indices) + " has component type " +
+                         std::to_string(ia.componentType) +
+                         "; indices must be unsigned byte (5121), unsigned short (5123) or unsigned int (5125)");
+        idx = readAccessor(model, prim.indices, path, plabel + " indices", false, options.maxVertices);
       } else {
         idx.resize(b.vertexCount);
         for (size_t v = 0; v < b.vertexCount; ++v) idx[v] = static_cast<double>(v);
@@ -273,7 +362,7 @@ Document readGltf(const std::string& path, FileFormat format) {
     };
     if (const int acc = attribute("NORMAL", true); acc >= 0) {
       if (componentCount(model.accessors[acc].type) != 3) fail(path, part.label + ": NORMAL is not VEC3");
-      const auto n = readAccessor(model, acc, path, part.label + " NORMAL");
+      const auto n = readAccessor(model, acc, path, part.label + " NORMAL", false, options.maxVertices);
       part.normals.resize(b.vertexCount);
       for (size_t v = 0; v < b.vertexCount; ++v) part.normals[v] = Vec3(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
     }
@@ -281,7 +370,7 @@ Document readGltf(const std::string& path, FileFormat format) {
       const int comps = componentCount(model.accessors[acc].type);
       if (comps != 3 && comps != 4) fail(path, part.label + ": COLOR_0 is neither VEC3 nor VEC4");
       // Integer colors are normalized by definition, even when the flag is missing.
-      const auto c = readAccessor(model, acc, path, part.label + " COLOR_0", true);
+      const auto c = readAccessor(model, acc, path, part.label + " COLOR_0", true, options.maxVertices);
       part.colors.resize(b.vertexCount);
       for (size_t v = 0; v < b.vertexCount; ++v)
         part.colors[v] = Eigen::Vector4d(c[comps * v], c[comps * v + 1], c[comps * v + 2],
@@ -294,7 +383,7 @@ Document readGltf(const std::string& path, FileFormat format) {
       const auto& a = model.accessors[acc];
       const int dim = componentCount(a.type);
       if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || dim > 4) continue;
-      part.extras.push_back({semantic, dim, readAccessor(model, acc, path, part.label + " " + semantic)});
+      part.extras.push_back({semantic, dim, readAccessor(model, acc, path, part.label + " " + semantic, false, options.maxVertices)});
     }
 
     for (size_t n = 0; n < model.nodes.size(); ++n)

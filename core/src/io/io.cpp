@@ -130,20 +130,24 @@ FileFormat formatFromPath(const std::string& path) {
   if (ext == ".glb") return FileFormat::Glb;
   if (ext == ".obj") return FileFormat::Obj;
   if (ext == ".off") return FileFormat::Off;
+  if (ext == ".ply") return FileFormat::Ply;
+  if (ext == ".stl") return FileFormat::Stl;
   io::fail(path, "unknown file extension '" + ext +
-                     "'; geoshift reads and writes .gltf, .glb, .obj and .off");
+                     "'; geoshift reads and writes .gltf, .glb, .obj, .off, .ply and .stl");
 }
 
-Document readDocument(const std::string& path) {
+Document readDocument(const std::string& path, const ReadOptions& options) {
   const FileFormat format = formatFromPath(path);
   std::error_code ec;
   if (!fs::exists(path, ec)) io::fail(path, "file not found");
   if (fs::is_directory(path, ec)) io::fail(path, "is a directory, not a mesh file");
   switch (format) {
     case FileFormat::Gltf:
-    case FileFormat::Glb: return io::readGltf(path, format);
-    case FileFormat::Obj: return io::readObj(path);
-    case FileFormat::Off: return io::readOff(path);
+    case FileFormat::Glb: return io::readGltf(path, format, options);
+    case FileFormat::Obj: return io::readObj(path, options);
+    case FileFormat::Off: return io::readOff(path, options);
+    case FileFormat::Ply: return io::readPly(path, options);
+    case FileFormat::Stl: return io::readStl(path, options);
   }
   io::fail(path, "unsupported format");
 }
@@ -167,8 +171,13 @@ std::vector<std::string> writeDocument(const Document& document, const std::stri
 
   if (io::isGltfFamily(format)) warnings = io::writeGltfFresh(document, path, format);
   else if (format == FileFormat::Obj) warnings = io::writeObjFresh(document, path);
+  else if (format == FileFormat::Ply) warnings = io::writePly(document, path);
+  else if (format == FileFormat::Stl) warnings = io::writeStl(document, path);
   else warnings = io::writeOff(document, path);
-  if (src && !(format == FileFormat::Off && src->format == FileFormat::Off)) {
+  // OFF, PLY and STL hold nothing but what the parts carry: written back, nothing is lost.
+  const bool sameSimple = src && src->format == format &&
+                          (format == FileFormat::Off || format == FileFormat::Ply || format == FileFormat::Stl);
+  if (src && !sameSimple) {
     warnings.push_back(path + ": written from a different format (" + document.path +
                        "): geometry, normals and colors only; materials, textures, texture "
                        "coordinates, groups and scene structure of the source were not carried over");

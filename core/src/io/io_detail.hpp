@@ -71,9 +71,11 @@ class AtomicFileSet {
 // InputError when the part arrays do not match its positions (normals, colors, extras).
 void checkPartSizes(const std::string& path, const MeshPart& part, size_t partIndex);
 
-Document readGltf(const std::string& path, FileFormat format);
-Document readObj(const std::string& path);
-Document readOff(const std::string& path);
+Document readGltf(const std::string& path, FileFormat format, const ReadOptions& options);
+Document readObj(const std::string& path, const ReadOptions& options);
+Document readOff(const std::string& path, const ReadOptions& options);
+Document readPly(const std::string& path, const ReadOptions& options);
+Document readStl(const std::string& path, const ReadOptions& options);
 
 // Write back into the model that was read (everything that is not geometry kept).
 std::vector<std::string> writeGltfInto(const Document& document, const std::string& path,
@@ -90,6 +92,8 @@ std::vector<std::string> serializeGltf(tinygltf::Model model, const std::string&
 std::vector<std::string> writeObjInto(const Document& document, const std::string& path);
 std::vector<std::string> writeObjFresh(const Document& document, const std::string& path);
 std::vector<std::string> writeOff(const Document& document, const std::string& path);
+std::vector<std::string> writePly(const Document& document, const std::string& path);
+std::vector<std::string> writeStl(const Document& document, const std::string& path);
 
 std::string readWholeFile(const std::string& path);
 
@@ -106,9 +110,11 @@ struct AccessorLayout {
 AccessorLayout accessorLayout(const tinygltf::Model& model, int accessor, const std::string& path,
                               const std::string& where);
 // All elements as doubles (count * components), sparse substitution applied; integer components
-// are scaled to [0,1] / [-1,1] when the accessor is normalized or `normalize` is set.
+// are scaled to [0,1] / [-1,1] when the accessor is normalized or `normalize` is set. An accessor
+// without a buffer view (all zeros) may declare at most maxWithoutData elements.
 std::vector<double> readAccessor(const tinygltf::Model& model, int accessor, const std::string& path,
-                                 const std::string& where, bool normalize = false);
+                                 const std::string& where, bool normalize = false,
+                                 size_t maxWithoutData = static_cast<size_t>(-1));
 // Stores one component of the given type; normalized integer types take values in [0,1] / [-1,1].
 void storeComponent(unsigned char* dst, int componentType, bool normalized, double value);
 int componentCount(int type);

@@ -64,7 +64,7 @@ std::string vertexLine(const Vec3& p, const Eigen::Vector4d* color) {
 
 }  // namespace
 
-Document readObj(const std::string& path) {
+Document readObj(const std::string& path, const ReadOptions& options) {
   auto source = std::make_shared<DocumentSource>();
   source->format = FileFormat::Obj;
   ObjSource& src = source->obj;
@@ -90,6 +90,9 @@ Document readObj(const std::string& path) {
     fail(path, "cannot read OBJ: " + err);
   }
   scanVertexLines(path, src.text, src);
+  if (src.vertexLines.size() > options.maxVertices)
+    fail(path, "the file has " + std::to_string(src.vertexLines.size()) + " vertices, more than the limit of " +
+                   std::to_string(options.maxVertices) + " (raise it with --max-vertices)");
   const auto& attrib = reader.GetAttrib();
   const size_t nv = src.vertexLines.size();
   if (attrib.vertices.size() / 3 != nv)
@@ -128,6 +131,14 @@ Document readObj(const std::string& path) {
           fail(path, "face " + std::to_string(faceNo) + " (group '" + shape.name + "') references vertex " +
                          std::to_string(idx.vertex_index + 1) + " but the file has " + std::to_string(nv) +
                          " vertices");
+        // tinyobjloader does not check vn / vt references against the lines that exist.
+        const size_t nn = attrib.normals.size() / 3, nt = attrib.texcoords.size() / 2;
+        if (idx.normal_index >= 0 && static_cast<size_t>(idx.normal_index) >= nn)
+          fail(path, "face " + std::to_string(faceNo) + " (group '" + shape.name + "') references normal " +
+                         std::to_string(idx.normal_index + 1) + " but the file has " + std::to_string(nn) + " normals");
+        if (idx.texcoord_index >= 0 && static_cast<size_t>(idx.texcoord_index) >= nt)
+          fail(path, "face " + std::to_string(faceNo) + " (group '" + shape.name + "') references texture coordinate " +
+                         std::to_string(idx.texcoord_index + 1) + " but the file has " + std::to_string(nt));
         if (k < 3) f[k] = idx.vertex_index;
         int& n = normalOf[idx.vertex_index];
         if (n == -2) n = idx.normal_index;

@@ -49,7 +49,7 @@ long integer(const std::string& path, const Line& l, const std::string& tok, con
 
 }  // namespace
 
-Document readOff(const std::string& path) {
+Document readOff(const std::string& path, const ReadOptions& options) {
   const auto lines = contentLines(readWholeFile(path));
   if (lines.empty()) fail(path, "empty file");
   size_t li = 0;
@@ -80,6 +80,10 @@ Document readOff(const std::string& path) {
   if (nv <= 0 || nf < 0)
     fail(path + ":" + std::to_string(countLine.number), "bad counts: " + std::to_string(nv) +
                                                             " vertices, " + std::to_string(nf) + " faces");
+  if (static_cast<unsigned long>(nv) > options.maxVertices)
+    fail(path + ":" + std::to_string(countLine.number),
+         "the header declares " + std::to_string(nv) + " vertices, more than the limit of " +
+             std::to_string(options.maxVertices) + " (raise it with --max-vertices)");
   if (lines.size() - li < static_cast<size_t>(nv) + static_cast<size_t>(nf))
     fail(path, "expected " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
                    " faces, the file has only " + std::to_string(lines.size() - li) + " data lines");
