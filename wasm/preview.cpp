@@ -1,6 +1,6 @@
 // preview(handle, op, params, maxVertices, onProgress?): a quick look at what an op would do, for
 // the web app's live preview while a slider moves. The session's mesh is analysed once into a
-// wavelet multiresolution (docs: ALGORITHMS.md §5) down to the first level with at most
+// wavelet multiresolution (docs/algorithms.md#wavelets) down to the first level with at most
 // `maxVertices` vertices; that analysis is kept with the session and reused for as long as the
 // positions and signals it was made from stay the same (a smaller maxVertices later analyses the
 // kept coarse mesh further, a larger one uses fewer of the kept stages). Each call runs the op, with its own

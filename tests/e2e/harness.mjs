@@ -14,7 +14,7 @@ import { analyze, decodePng } from './png.mjs';
 const webRoot = fileURLToPath(new URL('../../web/', import.meta.url));
 export const outputDir = fileURLToPath(new URL('../../test-output/e2e/', import.meta.url));
 
-// As TOOLCHAIN.md prescribes; `npx playwright install` cannot download browsers here.
+// Debian's Chromium through playwright-core, with the flags docs/testing.md#the-browser explains.
 export const CHROMIUM = {
   executablePath: '/usr/bin/chromium',
   args: [
