@@ -162,17 +162,8 @@ val run(int handle, const std::string& op, const val& params, const val& onProgr
     const OpEntry& entry = findOp(op);
     rejectUnknownParams(entry, params);
 
-    // Only the calling thread may touch JS values; the core's worker threads report through the
-    // flag alone. The callback's answer raises the flag, which every thread sees at its next step.
-    std::atomic<bool> cancel{false};
-    const std::thread::id caller = std::this_thread::get_id();
-    const bool hasCallback = onProgress.typeOf().as<std::string>() == "function";
-    Progress progress;
-    progress.cancel = &cancel;
-    progress.report = [&](double fraction, std::string_view stage) {
-      if (!hasCallback || std::this_thread::get_id() != caller) return;
-      if (onProgress(fraction, std::string(stage)).isTrue()) cancel.store(true, std::memory_order_relaxed);
-    };
+    JsProgress js(onProgress);
+    const Progress& progress = js.progress;
 
     const double start = emscripten_get_now();
     const OpContext context{session, Params(entry.name, params), progress};

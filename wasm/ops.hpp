@@ -6,8 +6,10 @@
 // wasm/CMakeLists.txt picks up every wasm/*.cpp, and geoshift.d.ts lists the ops and their
 // parameters for TypeScript. An op never changes the session itself: it works on copies and
 // returns what changed; the dispatcher commits that only when the op succeeded.
+#include <atomic>
 #include <optional>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -17,6 +19,29 @@
 #include "session.hpp"
 
 namespace geoshift::wasm {
+
+// The Progress of a call from JavaScript (run, preview). Only the calling thread may touch JS
+// values: the core's worker threads report through the cancel flag alone. onProgress(fraction,
+// stage), when it is a function, is called on the calling thread; its answer true raises the flag,
+// which every thread sees at its next step. Not copyable: `progress` refers to this object.
+struct JsProgress {
+  explicit JsProgress(const emscripten::val& onProgress)
+      : callback(onProgress), hasCallback(onProgress.typeOf().as<std::string>() == "function") {
+    progress.cancel = &cancel;
+    progress.report = [this](double fraction, std::string_view stage) {
+      if (!hasCallback || std::this_thread::get_id() != caller) return;
+      if (callback(fraction, std::string(stage)).isTrue()) cancel.store(true, std::memory_order_relaxed);
+    };
+  }
+  JsProgress(const JsProgress&) = delete;
+  JsProgress& operator=(const JsProgress&) = delete;
+
+  std::atomic<bool> cancel{false};
+  const emscripten::val& callback;
+  const bool hasCallback;
+  const std::thread::id caller = std::this_thread::get_id();
+  Progress progress;
+};
 
 // The JS parameter object of one run, read with defaults and range checks. Every message names the
 // op and the parameter, in the JS spelling the caller used.

@@ -142,15 +142,8 @@ val preview(int handle, const std::string& op, const val& params, int maxVertice
     const OpEntry& entry = findPreviewOp(op);
     rejectUnknown(entry, params);
 
-    std::atomic<bool> cancel{false};
-    const std::thread::id caller = std::this_thread::get_id();
-    const bool hasCallback = onProgress.typeOf().as<std::string>() == "function";
-    Progress progress;
-    progress.cancel = &cancel;
-    progress.report = [&](double fraction, std::string_view stage) {
-      if (!hasCallback || std::this_thread::get_id() != caller) return;
-      if (onProgress(fraction, std::string(stage)).isTrue()) cancel.store(true, std::memory_order_relaxed);
-    };
+    JsProgress js(onProgress);
+    const Progress& progress = js.progress;
 
     const double start = emscripten_get_now();
     const std::uint64_t key = fingerprint(session);

@@ -84,9 +84,54 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   result.neighborhoodBytes = hoods.bytes();
 
-  // The probe.
+  Mesh work = mesh;  // connectivity for the passes; positions swapped in and out
+  auto presmooth = [&](Track& t, int steps) {
+    if (steps == 0) return;
+    TaubinOptions taubin = o.supportSmoothing;
+    taubin.iterations = steps;
+    work.positions() = t.positions;
+    taubinSmooth(work, taubin);
+    t.positions = work.positions();
+  };
+  auto pass = [&](Track& t, double rangeBandwidth) {
+    work.positions() = t.positions;
+    const std::vector<Vec3> targets =
+        shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), rangeBandwidth, parallel);
+    VertexUpdateResult u = updateVertices(work, targets, *t.update);
+    result.limitedSteps += u.limitedSteps;
+    t.positions = std::move(u.positions);
+    ++result.passesRun;
+  };
+  // Vertex update options per start (input, probe), each holding its start's face normals as the
+  // flip guard's reference, shared by every candidate and pass.
+  auto updateFrom = [&](const std::vector<Vec3>& start) {
+    VertexUpdateOptions update;
+    update.iterations = o.vertexIterations;
+    update.flipGuard = FlipGuard::InputOrTarget;
+    update.parallel = parallel;
+    work.positions() = start;
+    update.referenceNormals = faceNormals(work);
+    return update;
+  };
+  const VertexUpdateOptions inputUpdate = updateFrom(input);
+
+  if (o.fixedPasses > 0) {
+    const double hr = o.rangeBandwidths.front();
+    Track x{input, &inputUpdate};
+    presmooth(x, o.presmoothing.front());
+    for (int t = 1; t <= o.fixedPasses; ++t) {
+      progress.step(0.1 + 0.9 * (t - 1) / o.fixedPasses, "denoise passes");
+      pass(x, hr);
+    }
+    result.presmoothingSteps = o.presmoothing.front();
+    result.rangeBandwidth = hr;
+    result.passes = o.fixedPasses;
+    mesh.positions() = std::move(x.positions);
+    return finish();
+  }
+
+  // The probe: ±1 per vertex with a normal, from a generator the standard specifies bit for bit.
   const std::vector<Vec3> normals = vertexNormals(mesh);
-  const bool fixed = o.fixedPasses > 0;
   const double eps = 0.01 * sigma;
   std::vector<double> probe(n, 0);
   int m = 0;
@@ -100,11 +145,16 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       }
     }
   }
-  Mesh work = mesh;
+  std::vector<Vec3> perturbed = input;
+  for (int v = 0; v < n; ++v) perturbed[v] += eps * probe[v] * normals[v];
+  const VertexUpdateOptions perturbedUpdate = updateFrom(perturbed);
+
   // SURE with the noise level times the strength (what candidates are ranked by), and with the noise
   // level alone (the unbiased estimate of the error that is reported).
+  struct Risk {
+    double ranked, unbiased;
+  };
   const double sigma1 = sigma / o.strength;
-  double unbiased = 0;
   auto risk = [&](const Track& x, const Track& xp) {
     double fit = 0, div = 0;
     for (int v = 0; v < n; ++v) {
@@ -114,67 +164,10 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       div += probe[v] * (xp.positions[v] - x.positions[v]).dot(normals[v]);
     }
     div /= eps;
-    unbiased = (fit - m * sigma1 * sigma1 + 2 * sigma1 * sigma1 * div) / std::max(1, m);
-    return (fit - m * sigma * sigma + 2 * sigma * sigma * div) / std::max(1, m);
+    const double count = std::max(1, m);
+    return Risk{(fit - m * sigma * sigma + 2 * sigma * sigma * div) / count,
+                (fit - m * sigma1 * sigma1 + 2 * sigma1 * sigma1 * div) / count};
   };
-  auto referenceOf = [&](const std::vector<Vec3>& from) {
-    work.positions() = from;
-    return faceNormals(work);
-  };
-  auto presmooth = [&](Track& t, int steps) {
-    if (steps == 0) return;
-    TaubinOptions taubin = o.supportSmoothing;
-    taubin.iterations = steps;
-    work.positions() = t.positions;
-    taubinSmooth(work, taubin);
-    t.positions = work.positions();
-  };
-  double rangeBandwidth = 0;  // of the candidate being computed
-  // One set of vertex update options per start (input and probe), each holding its start's face
-  // normals as the flip guard's reference, shared by every candidate and pass.
-  VertexUpdateOptions update;
-  update.iterations = o.vertexIterations;
-  update.flipGuard = FlipGuard::InputOrTarget;
-  update.parallel = parallel;
-  auto pass = [&](Track& t) {
-    work.positions() = t.positions;
-    const std::vector<Vec3> targets =
-        shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), rangeBandwidth, parallel);
-    VertexUpdateResult u = updateVertices(work, targets, *t.update);
-    result.limitedSteps += u.limitedSteps;
-    t.positions = std::move(u.positions);
-    ++result.passesRun;
-  };
-
-  std::vector<Vec3> perturbed = input;
-  for (int v = 0; v < n; ++v) perturbed[v] += eps * probe[v] * normals[v];
-  VertexUpdateOptions inputUpdate = update, perturbedUpdate = update;
-  inputUpdate.referenceNormals = referenceOf(input);
-  perturbedUpdate.referenceNormals = referenceOf(perturbed);
-  std::vector<Vec3> best;
-  double bestRisk = 0, bestUnbiased = 0;
-  struct Candidate {
-    int steps;
-    double rangeBandwidth;
-  };
-  std::vector<Candidate> candidates;
-  for (int steps : fixed ? std::vector<int>{o.presmoothing.front()} : o.presmoothing)
-    for (double hr : fixed ? std::vector<double>{o.rangeBandwidths.front()} : o.rangeBandwidths) candidates.push_back({steps, hr});
-  const int passBudget = fixed ? o.fixedPasses : o.maxPasses;
-  if (fixed) {
-    rangeBandwidth = candidates.front().rangeBandwidth;
-    Track x{input, &inputUpdate};
-    presmooth(x, candidates.front().steps);
-    for (int t = 1; t <= passBudget; ++t) {
-      progress.step(0.1 + 0.9 * (t - 1) / passBudget, "denoise passes");
-      pass(x);
-    }
-    result.presmoothingSteps = candidates.front().steps;
-    result.rangeBandwidth = rangeBandwidth;
-    result.passes = passBudget;
-    mesh.positions() = std::move(x.positions);
-    return finish();
-  }
 
   // The candidates race in step, one pass each in turn. A candidate stops after `patience` passes
   // that did not lower its risk by 0.2% of the noise variance (on smooth shapes the risk keeps
@@ -182,50 +175,53 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   // its best risk is 2% of the noise variance above the leader's: it is not going to catch up, and
   // the passes it would have run are half the cost on meshes where one candidate clearly fits.
   struct Run {
-    Candidate candidate;
+    int steps;
+    double rangeBandwidth;
     Track x, xp;
     int t = 0, lastBest = 0;
     double anchor = 0;  // the risk at the last pass that lowered it by more than the tolerance
     double best = 0;
     bool active = true;
   };
-  std::vector<Run> runs;
+  std::vector<Vec3> best;
+  Risk bestRisk{0, 0};
   auto score = [&](Run& run) {
-    const double r = risk(run.x, run.xp);
-    if (run.t == 0 || r < run.anchor - 0.002 * sigma * sigma) {
-      run.anchor = r;
+    const Risk r = risk(run.x, run.xp);
+    if (run.t == 0 || r.ranked < run.anchor - 0.002 * sigma * sigma) {
+      run.anchor = r.ranked;
       run.lastBest = run.t;
     }
-    if (run.t == 0 || r < run.best) run.best = r;
-    if (best.empty() || r < bestRisk) {
+    if (run.t == 0 || r.ranked < run.best) run.best = r.ranked;
+    if (best.empty() || r.ranked < bestRisk.ranked) {
       bestRisk = r;
-      bestUnbiased = unbiased;
       best = run.x.positions;
-      result.presmoothingSteps = run.candidate.steps;
-      result.rangeBandwidth = run.candidate.rangeBandwidth;
+      result.presmoothingSteps = run.steps;
+      result.rangeBandwidth = run.rangeBandwidth;
       result.passes = run.t;
     }
   };
-  for (const Candidate& c : candidates) {
-    runs.push_back({c, {input, &inputUpdate}, {perturbed, &perturbedUpdate}});
-    Run& run = runs.back();
-    presmooth(run.x, c.steps);
-    presmooth(run.xp, c.steps);
-    score(run);
+  std::vector<Run> runs;
+  for (int steps : o.presmoothing) {
+    for (double hr : o.rangeBandwidths) {
+      runs.push_back({steps, hr, {input, &inputUpdate}, {perturbed, &perturbedUpdate}});
+      Run& run = runs.back();
+      presmooth(run.x, steps);
+      presmooth(run.xp, steps);
+      score(run);
+    }
   }
-  const double total = static_cast<double>(runs.size()) * passBudget;
+  const double total = static_cast<double>(runs.size()) * o.maxPasses;
   for (int done = 0;;) {
     bool any = false;
     for (Run& run : runs) {
       if (!run.active) continue;
       progress.step(0.1 + 0.9 * std::min(1.0, done / total), "denoise passes");
-      rangeBandwidth = run.candidate.rangeBandwidth;
-      pass(run.x);
-      pass(run.xp);
+      pass(run.x, run.rangeBandwidth);
+      pass(run.xp, run.rangeBandwidth);
       ++run.t;
       ++done;
       score(run);
-      if (run.t - run.lastBest >= o.patience || run.t >= passBudget) run.active = false;
+      if (run.t - run.lastBest >= o.patience || run.t >= o.maxPasses) run.active = false;
       any = any || run.active;
     }
     if (!any) break;
@@ -234,7 +230,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     for (Run& run : runs)
       if (run.active && run.t >= o.patience && run.best > leader + 0.02 * sigma * sigma) run.active = false;
   }
-  result.estimatedError = std::sqrt(std::max(0.0, bestUnbiased)) / ael;
+  result.estimatedError = std::sqrt(std::max(0.0, bestRisk.unbiased)) / ael;
   mesh.positions() = std::move(best);
   return finish();
 }

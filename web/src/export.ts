@@ -28,9 +28,9 @@ export async function exportGlb(root: Object3D, meshes: Mesh[]): Promise<ArrayBu
   }
 }
 
-/** Offers bytes as a download without leaving the page. */
-export function download(bytes: ArrayBuffer, fileName: string): void {
-  const url = URL.createObjectURL(new Blob([bytes], { type: 'model/gltf-binary' }));
+/** Offers a file to download without leaving the page. */
+export function saveBlob(blob: Blob, fileName: string): void {
+  const url = URL.createObjectURL(blob);
   const a = document.createElement('a');
   a.href = url;
   a.download = fileName;
@@ -38,6 +38,11 @@ export function download(bytes: ArrayBuffer, fileName: string): void {
   a.click();
   a.remove();
   setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+/** Offers GLB bytes as a download. */
+export function download(bytes: ArrayBuffer, fileName: string): void {
+  saveBlob(new Blob([bytes], { type: 'model/gltf-binary' }), fileName);
 }
 
 /** "scan.obj" -> "scan-geoshift.glb". */
