@@ -69,6 +69,16 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   const double sigma = level * ael;
   const int n = mesh.vertexCount();
   const std::vector<Vec3> input = mesh.positions();
+  // The passes run on `mesh` itself (below): on an exception it gets its input back. assign() into a
+  // vector of the same size does not allocate, so the restore cannot throw.
+  struct Restore {
+    Mesh& mesh;
+    const std::vector<Vec3>& input;
+    bool armed = true;
+    ~Restore() {
+      if (armed) mesh.positions().assign(input.begin(), input.end());
+    }
+  } restore{mesh, input};
   ParallelOptions parallel;
   parallel.threads = o.threads;
 
@@ -84,7 +94,9 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   result.neighborhoodBytes = hoods.bytes();
 
-  Mesh work = mesh;  // connectivity for the passes; positions swapped in and out
+  // The passes use `mesh` for its connectivity, with each track's positions swapped in and out (a
+  // copy would cost 50 bytes a vertex); the chosen positions go back into it at the end.
+  Mesh& work = mesh;
   auto presmooth = [&](Track& t, int steps) {
     if (steps == 0) return;
     TaubinOptions taubin = o.supportSmoothing;
@@ -95,9 +107,8 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   };
   auto pass = [&](Track& t, double rangeBandwidth) {
     work.positions() = t.positions;
-    const std::vector<Vec3> targets =
-        shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), rangeBandwidth, parallel);
-    VertexUpdateResult u = updateVertices(work, targets, *t.update);
+    std::vector<Vec3> targets = shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), rangeBandwidth, parallel);
+    VertexUpdateResult u = updateVertices(work, std::move(targets), *t.update);
     result.limitedSteps += u.limitedSteps;
     t.positions = std::move(u.positions);
     ++result.passesRun;
@@ -127,6 +138,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     result.rangeBandwidth = hr;
     result.passes = o.fixedPasses;
     mesh.positions() = std::move(x.positions);
+    restore.armed = false;
     return finish();
   }
 
@@ -210,6 +222,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       score(run);
     }
   }
+  std::vector<Vec3>().swap(perturbed);  // the probe tracks have started from it
   const double total = static_cast<double>(runs.size()) * o.maxPasses;
   for (int done = 0;;) {
     bool any = false;
@@ -232,6 +245,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   result.estimatedError = std::sqrt(std::max(0.0, bestRisk.unbiased)) / ael;
   mesh.positions() = std::move(best);
+  restore.armed = false;
   return finish();
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -26,9 +27,9 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOpti
   const double reach = out.radius + ael;  // a face whose centroid is within r has its corners within r + AEL
   const double k = 0.5 / (out.spatialBandwidth * out.spatialBandwidth);
 
-  // Faces in blocks: each block's rows are built in parallel into per-face buffers, then appended in
-  // face order, so the result does not depend on the threads and peak scratch stays one block.
-  constexpr int kBlock = 4096;
+  // Faces in blocks: each block's rows are built in parallel into per-face buffers, then packed in
+  // face order into the block's array, so the result does not depend on the threads.
+  constexpr int kBlock = FaceNeighborhoods::kBlock;
   const int threads = resolveThreads(options.parallel.threads);
   struct Scratch {
     std::optional<LogMap> logMap;
@@ -59,7 +60,7 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOpti
   std::vector<std::vector<int>> rowFace(kBlock);
   std::vector<std::vector<float>> rowWeight(kBlock);
   out.start.reserve(nf + 1);
-  out.start.push_back(0);
+  out.blocks.reserve((nf + kBlock - 1) / kBlock);
   for (int block = 0; block < nf; block += kBlock) {
     const int count = std::min(kBlock, nf - block);
     ParallelOptions par = options.parallel;
@@ -129,26 +130,26 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOpti
       faces.swap(sortedFaces);
       weights.swap(sortedWeights);
     });
+    size_t length = 0;
+    for (int i = 0; i < count; ++i) length += rowFace[i].size();
+    if (length > static_cast<size_t>(std::numeric_limits<int>::max()))
+      throw InputError("face neighbourhoods: more than " + std::to_string(std::numeric_limits<int>::max()) +
+                       " entries in a block of " + std::to_string(kBlock) + " faces; use a smaller radius");
+    std::vector<FaceNeighborhoods::Entry>& entries = out.blocks.emplace_back();
+    entries.reserve(length);
     for (int i = 0; i < count; ++i) {
-      out.face.insert(out.face.end(), rowFace[i].begin(), rowFace[i].end());
-      out.spatialWeight.insert(out.spatialWeight.end(), rowWeight[i].begin(), rowWeight[i].end());
-      out.start.push_back(static_cast<int>(out.face.size()));
-    }
-    if (block == 0 && count < nf) {
-      // Rows are about the same length all over a mesh: reserve from the first block's mean with a
-      // margin, so that the arrays are not regrown (a regrowth holds old and new copies at once).
-      const size_t expected = static_cast<size_t>(1.08 * out.face.size() / count * nf) + 64;
-      out.face.reserve(expected);
-      out.spatialWeight.reserve(expected);
+      out.start.push_back(static_cast<int>(entries.size()));
+      for (size_t j = 0; j < rowFace[i].size(); ++j) entries.push_back({rowFace[i][j], rowWeight[i][j]});
     }
   }
+  out.start.push_back(out.blocks.empty() ? 0 : static_cast<int>(out.blocks.back().size()));
   return out;
 }
 
 std::vector<Vec3> shiftFaceNormals(const FaceNeighborhoods& hoods, const std::vector<double>& areas,
                                    const std::vector<Vec3>& normals, double rangeBandwidth,
                                    const ParallelOptions& parallel, const Progress& progress) {
-  const int nf = static_cast<int>(hoods.start.size()) - 1;
+  const int nf = hoods.faceCount();
   if (static_cast<int>(normals.size()) != nf || static_cast<int>(areas.size()) != nf)
     throw InputError("face normal shift: " + std::to_string(normals.size()) + " normals and " +
                      std::to_string(areas.size()) + " areas for " + std::to_string(nf) + " faces");
@@ -165,9 +166,9 @@ std::vector<Vec3> shiftFaceNormals(const FaceNeighborhoods& hoods, const std::ve
       return;
     }
     Vec3 sum = Vec3::Zero();
-    for (int j = hoods.start[f]; j < hoods.start[f + 1]; ++j) {
-      const int g = hoods.face[j];
-      const double w = hoods.spatialWeight[j] * areas[g] * mean_shift_detail::kernelExp(-(normals[g] - nf0).squaredNorm() * k);
+    for (const FaceNeighborhoods::Entry& e : hoods.row(f)) {
+      const int g = e.face;
+      const double w = e.spatialWeight * areas[g] * mean_shift_detail::kernelExp(-(normals[g] - nf0).squaredNorm() * k);
       sum += w * normals[g];
     }
     const double len = sum.norm();

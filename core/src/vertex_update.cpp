@@ -41,7 +41,7 @@ Vec3 crossOf(const std::vector<Vec3>& x, const Face& t) {
 
 }  // namespace
 
-VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& targetNormals,
+VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNormals,
                                   const VertexUpdateOptions& options, const Progress& progress) {
   const int nv = mesh.vertexCount(), nf = mesh.faceCount();
   if (static_cast<int>(targetNormals.size()) != nf) {
@@ -52,12 +52,12 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
     throw InputError("vertex update: iterations must be >= 0 (got " +
                      std::to_string(options.iterations) + ")");
   }
-  std::vector<Vec3> target(nf);
+  std::vector<Vec3> target = std::move(targetNormals);
   for (int f = 0; f < nf; ++f) {
-    const Vec3& n = targetNormals[f];
+    Vec3& n = target[f];
     if (!n.allFinite()) throw InputError("vertex update: target normal of face " + std::to_string(f) + " is not finite " + vecText(n));
     const double len = n.norm();
-    target[f] = len > 0 ? Vec3(n / len) : Vec3::Zero();
+    n = len > 0 ? Vec3(n / len) : Vec3::Zero();
   }
 
   const VertexFaces vf = vertexFaces(mesh);

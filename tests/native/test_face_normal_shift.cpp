@@ -24,7 +24,7 @@ Vec3 centroid(const Mesh& m, int f) {
 
 std::map<int, float> row(const FaceNeighborhoods& h, int f) {
   std::map<int, float> out;
-  for (int j = h.start[f]; j < h.start[f + 1]; ++j) out[h.face[j]] = h.spatialWeight[j];
+  for (const FaceNeighborhoods::Entry& e : h.row(f)) out[e.face] = e.spatialWeight;
   return out;
 }
 
@@ -40,7 +40,7 @@ TEST_CASE("face neighbourhoods on a plane are the faces within r, with Gaussian 
   REQUIRE(h.radius == Approx(o.radius * ael));
   REQUIRE(static_cast<int>(h.start.size()) == plane.faceCount() + 1);
   for (int f = 0; f < plane.faceCount(); f += 7) {
-    REQUIRE(h.face[h.start[f]] == f);  // the face itself first
+    REQUIRE(h.row(f).front().face == f);  // the face itself first
     std::map<int, float> expected;
     for (int g = 0; g < plane.faceCount(); ++g) {
       const double d2 = (centroid(plane, g) - centroid(plane, f)).squaredNorm();

@@ -4,6 +4,7 @@
 // support surface (faces reached across edges within r, or a log map from its centroid) and
 // reused by every pass.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "geoshift/geodesic.hpp"
@@ -22,16 +23,31 @@ struct FaceNeighborhoodOptions {
   ParallelOptions parallel;
 };
 
-// For face f, the faces g whose centroid lies within `radius` of f's centroid (f itself first), and
-// the spatial kernel exp(-d²/2h_s²) of their distance d. Compressed rows.
+// For face f, the faces g whose centroid lies within `radius` of f's centroid (f itself first, the
+// others in increasing order), each with the spatial kernel exp(-d²/2h_s²) of their distance d.
+// Rows are stored in blocks of kBlock faces, each block's entries in one exactly sized array: built
+// block by block, the table never holds a second copy of itself (docs/denoising.md#speed-and-memory).
 struct FaceNeighborhoods {
-  std::vector<int> start;          // faceCount + 1 offsets into face / spatialWeight
-  std::vector<int> face;
-  std::vector<float> spatialWeight;
-  double radius = 0;               // absolute (the support's units)
-  double spatialBandwidth = 0;     // absolute
+  struct Entry {
+    int face;
+    float spatialWeight;
+  };
+  static constexpr int kBlock = 4096;
+  std::vector<std::vector<Entry>> blocks;  // faces [b·kBlock, (b+1)·kBlock)
+  std::vector<int> start;                  // face -> offset of its row in its block; faceCount + 1
+  double radius = 0;                       // absolute (the support's units)
+  double spatialBandwidth = 0;             // absolute
+
+  int faceCount() const { return start.empty() ? 0 : static_cast<int>(start.size()) - 1; }
+  std::span<const Entry> row(int f) const {
+    const std::vector<Entry>& block = blocks[f / kBlock];
+    const int end = (f + 1) % kBlock == 0 ? static_cast<int>(block.size()) : start[f + 1];
+    return {block.data() + start[f], static_cast<size_t>(end - start[f])};
+  }
   size_t bytes() const {
-    return start.capacity() * sizeof(int) + face.capacity() * sizeof(int) + spatialWeight.capacity() * sizeof(float);
+    size_t n = start.capacity() * sizeof(int) + blocks.capacity() * sizeof(std::vector<Entry>);
+    for (const auto& b : blocks) n += b.capacity() * sizeof(Entry);
+    return n;
   }
 };
 

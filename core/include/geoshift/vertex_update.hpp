@@ -56,7 +56,9 @@ struct VertexUpdateResult {
 // Preconditions: targetNormals has one entry per face. Entries are normalised here; a zero vector
 // means the face pulls on nothing. Throws InputError when the count is wrong, an entry is not
 // finite (naming the face) or iterations < 0. Throws Cancelled through `progress`.
-VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& targetNormals,
+// targetNormals is taken by value: a caller done with its targets moves them in and they are
+// normalised in place.
+VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNormals,
                                   const VertexUpdateOptions& options = {},
                                   const Progress& progress = {});
 
