@@ -121,7 +121,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     update.flipGuard = FlipGuard::InputOrTarget;
     update.parallel = parallel;
     work.positions() = start;
-    update.referenceNormals = faceNormals(work);
+    update.referenceNormals = referenceNormalsOf(work);
     return update;
   };
   const VertexUpdateOptions inputUpdate = updateFrom(input);

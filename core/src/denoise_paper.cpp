@@ -47,7 +47,7 @@ DenoiseResult denoisePaper(Mesh& mesh, const DenoiseOptions& all, const Progress
     const int n = mesh.vertexCount();
     double iterations = 0;
     VertexUpdateOptions update = options.vertexUpdate;
-    if (update.referenceNormals.empty()) update.referenceNormals = faceNormals(mesh);  // the input's, every pass
+    if (update.referenceNormals.empty()) update.referenceNormals = referenceNormalsOf(mesh);  // the input's, every pass
     for (int pass = 0; pass < options.passes; ++pass) {
       const double from = 0.02 + 0.98 * pass / options.passes, to = 0.02 + 0.98 * (pass + 1) / options.passes;
       std::vector<double> flat;

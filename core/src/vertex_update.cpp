@@ -70,9 +70,9 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     throw InputError("vertex update: " + std::to_string(options.referenceNormals.size()) + " reference normals for " +
                      std::to_string(mesh.faceCount()) + " faces");
   // The caller's reference is read in place (a denoiser's passes share one); only the default is made.
-  std::vector<Vec3> ownReference;
-  if (options.referenceNormals.empty()) ownReference = faceNormals(mesh);
-  const std::vector<Vec3>& inputNormal = options.referenceNormals.empty() ? ownReference : options.referenceNormals;
+  std::vector<Eigen::Vector3f> ownReference;
+  if (options.referenceNormals.empty()) ownReference = referenceNormalsOf(mesh);
+  const std::vector<Eigen::Vector3f>& inputNormal = options.referenceNormals.empty() ? ownReference : options.referenceNormals;
 
   VertexUpdateResult result;
   std::vector<Vec3> x = mesh.positions(), candidate = x, step(nv);
@@ -81,6 +81,7 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   par.chunk = 1024;
   const Progress quiet;  // the iterations report; the parallel loops inside them do not
   std::vector<Vec3> currentCross(nf);
+  std::vector<double> weight(nf), offset(nf);
   std::vector<double> scale(nv);
   std::vector<char> halvedThisRound(nv);
   std::vector<int> badFaces, touched;
@@ -89,7 +90,7 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
 
   auto faceOk = [&](int f) {
     const Vec3 c = crossOf(candidate, mesh.face(f));
-    const bool keepsInputSide = inputNormal[f].squaredNorm() == 0.0 || c.dot(inputNormal[f]) > 0.0 ||
+    const bool keepsInputSide = inputNormal[f].squaredNorm() == 0.0f || c.dot(inputNormal[f].cast<double>()) > 0.0 ||
                                 (options.flipGuard == FlipGuard::InputOrTarget && c.dot(target[f]) > 0.0);
     const bool keepsCurrentSide = currentCross[f].squaredNorm() == 0.0 || c.dot(currentCross[f]) > 0.0;
     return keepsInputSide && keepsCurrentSide;
@@ -99,7 +100,14 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     progress.step(static_cast<double>(it) / options.iterations, "vertex update");
     // Each vertex gathers over its faces in increasing face order: the sums (and so the results)
     // are those of a serial pass over the faces, for any thread count.
-    parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { currentCross[f] = crossOf(x, mesh.face(f)); });
+    // Per face once, not once per corner: its cross product, its weight, and its target plane's
+    // offset n·c (c the centroid), so that a corner x_v is pulled by (n·c − n·x_v) n.
+    parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
+      const Face& t = mesh.face(f);
+      currentCross[f] = crossOf(x, t);
+      weight[f] = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
+      offset[f] = target[f].dot((x[t[0]] + x[t[1]] + x[t[2]]) / 3.0);
+    });
     parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
       Vec3 sum = Vec3::Zero();
       double wsum = 0;
@@ -107,11 +115,8 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
         const int f = vf.face[k];
         const Vec3& n = target[f];
         if (n.squaredNorm() == 0) continue;
-        const Face& t = mesh.face(f);
-        const double w = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
-        const Vec3 c = (x[t[0]] + x[t[1]] + x[t[2]]) / 3.0;
-        sum += (w * n.dot(c - x[v])) * n;
-        wsum += w;
+        sum += (weight[f] * (offset[f] - n.dot(x[v]))) * n;
+        wsum += weight[f];
       }
       step[v] = !pinned[v] && wsum > 0 ? Vec3(sum / wsum) : Vec3::Zero();
       scale[v] = 1.0;
@@ -164,6 +169,13 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     result.maxDisplacement = std::max(result.maxDisplacement, (x[v] - mesh.position(v)).norm());
   result.positions = std::move(x);
   return result;
+}
+
+std::vector<Eigen::Vector3f> referenceNormalsOf(const Mesh& mesh) {
+  const std::vector<Vec3> normals = faceNormals(mesh);
+  std::vector<Eigen::Vector3f> out(normals.size());
+  for (size_t f = 0; f < normals.size(); ++f) out[f] = normals[f].cast<float>();
+  return out;
 }
 
 std::vector<Vec3> faceNormalsFromVertexNormals(const Mesh& mesh,
