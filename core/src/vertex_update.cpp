@@ -17,24 +17,6 @@ std::string vecText(const Vec3& v) {
   return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
 }
 
-// Faces around each vertex, flat: vertex v's faces are [start[v], start[v+1]).
-struct VertexFaces {
-  std::vector<int> start, face;
-};
-
-VertexFaces vertexFaces(const Mesh& mesh) {
-  VertexFaces vf;
-  vf.start.assign(mesh.vertexCount() + 1, 0);
-  for (const Face& t : mesh.faces())
-    for (int v : t) ++vf.start[v + 1];
-  for (int v = 0; v < mesh.vertexCount(); ++v) vf.start[v + 1] += vf.start[v];
-  vf.face.resize(vf.start.back());
-  std::vector<int> fill(vf.start.begin(), vf.start.end() - 1);
-  for (int f = 0; f < mesh.faceCount(); ++f)
-    for (int v : mesh.face(f)) vf.face[fill[v]++] = f;
-  return vf;
-}
-
 Vec3 crossOf(const std::vector<Vec3>& x, const Face& t) {
   return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
 }
@@ -60,7 +42,6 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     n = len > 0 ? Vec3(n / len) : Vec3::Zero();
   }
 
-  const VertexFaces vf = vertexFaces(mesh);
   std::vector<char> pinned(nv, 0);
   for (int v = 0; v < nv; ++v)
     pinned[v] = mesh.isIsolated(v) || (options.fixedBoundary && mesh.isBoundaryVertex(v));
@@ -98,8 +79,8 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
 
   for (int it = 0; it < options.iterations; ++it) {
     progress.step(static_cast<double>(it) / options.iterations, "vertex update");
-    // Each vertex gathers over its faces in increasing face order: the sums (and so the results)
-    // are those of a serial pass over the faces, for any thread count.
+    // Each vertex gathers over its faces in the mesh's counter-clockwise order from its first
+    // half-edge: a fixed order, so the sums (and so the results) do not depend on the threads.
     // Per face once, not once per corner: its cross product, its weight, and its target plane's
     // offset n·c (c the centroid), so that a corner x_v is pulled by (n·c − n·x_v) n.
     parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
@@ -111,13 +92,13 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
       Vec3 sum = Vec3::Zero();
       double wsum = 0;
-      for (int k = vf.start[v]; k < vf.start[v + 1]; ++k) {
-        const int f = vf.face[k];
+      mesh.forEachOutgoing(v, [&](int h) {
+        const int f = Mesh::faceOf(h);
         const Vec3& n = target[f];
-        if (n.squaredNorm() == 0) continue;
+        if (n.squaredNorm() == 0) return;
         sum += (weight[f] * (offset[f] - n.dot(x[v]))) * n;
         wsum += weight[f];
-      }
+      });
       step[v] = !pinned[v] && wsum > 0 ? Vec3(sum / wsum) : Vec3::Zero();
       scale[v] = 1.0;
       candidate[v] = x[v] + step[v];
@@ -149,13 +130,13 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
       ++round;
       for (int v : touched) {
         halvedThisRound[v] = 0;
-        for (int k = vf.start[v]; k < vf.start[v + 1]; ++k) {
-          const int f = vf.face[k];
+        mesh.forEachOutgoing(v, [&](int h) {
+          const int f = Mesh::faceOf(h);
           if (badStamp[f] != round && !faceOk(f)) {
             badStamp[f] = round;
             badFaces.push_back(f);
           }
-        }
+        });
       }
       // A bad face whose vertices are all frozen sits at its current, valid position; it cannot
       // stay bad, so the loop ends after at most kMaxHalvings + 1 rounds per vertex.
