@@ -12,7 +12,8 @@ namespace geoshift::io {
 namespace {
 
 // The file is read once into memory and tokenized in place: a content line is a list of views into the
-// text, so reading a large OFF costs little more than the file itself (docs/io.md#off).
+// text, so reading a large OFF costs little more than the file itself
+// (docs/denoising.md#speed-and-memory).
 struct Line {
   size_t number = 0;
   std::vector<std::string_view> tokens;
