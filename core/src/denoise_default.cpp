@@ -3,9 +3,9 @@
 // Candidates x(k, t): k Taubin steps, then t passes of [blurring mean shift of the face normals →
 // vertex update]. For each, Stein's unbiased risk estimate of the error along the vertex normals is
 //   SURE = Σ_i ((x_i − y_i)·N_i)² − mσ² + 2σ² div,  div ≈ Σ_i b_i ((x'_i − x_i)·N_i) / ε,
-// with y the input, N its vertex normals, σ the noise level, and x' the same candidate computed from
-// y + ε b N for a random ±1 probe b (Monte-Carlo SURE, Ramani et al. 2008). The candidate of least
-// SURE is returned. Every candidate runs on both copies, so the cost is twice the passes computed.
+// with y the input, N the vertex normals of y after a few Taubin steps, σ the noise level, and x'
+// the same candidate computed from y + ε b N for a random ±1 probe b (Monte-Carlo SURE, Ramani et
+// al. 2008). The candidate of least SURE is returned. Every candidate runs on both copies, so the cost is twice the passes computed.
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -35,6 +35,8 @@ void validate(const DenoiseOptions& o) {
   if (o.maxPasses < 1 || o.maxPasses > 10000) bad("maximum passes must be in [1, 10000] (got " + std::to_string(o.maxPasses) + ")");
   if (o.patience < 1) bad("patience must be at least 1 (got " + std::to_string(o.patience) + ")");
   if (o.fixedPasses < 0 || o.fixedPasses > 10000) bad("fixed passes must be in [0, 10000] (got " + std::to_string(o.fixedPasses) + ")");
+  if (o.riskNormalSmoothing < 0 || o.riskNormalSmoothing > 10000)
+    bad("risk normal smoothing must be in [0, 10000] steps (got " + std::to_string(o.riskNormalSmoothing) + ")");
   if (o.vertexIterations < 1 || o.vertexIterations > 10000)
     bad("vertex iterations must be in [1, 10000] (got " + std::to_string(o.vertexIterations) + ")");
 }
@@ -143,7 +145,18 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
 
   // The probe: ±1 per vertex with a normal, from a generator the standard specifies bit for bit.
-  const std::vector<Vec3> normals = vertexNormals(mesh);
+  // The directions the error is measured along: normals of a lightly smoothed copy of the input.
+  std::vector<Vec3> normals;
+  if (o.riskNormalSmoothing > 0) {
+    TaubinOptions taubin = o.supportSmoothing;
+    taubin.iterations = o.riskNormalSmoothing;
+    work.positions() = input;
+    taubinSmooth(work, taubin);
+    normals = vertexNormals(work);
+  } else {
+    work.positions() = input;
+    normals = vertexNormals(work);
+  }
   const double eps = 0.01 * sigma;
   std::vector<double> probe(n, 0);
   int m = 0;
