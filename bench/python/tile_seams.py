@@ -63,6 +63,8 @@ def main():
     ap.add_argument("--tile", type=float, default=90)
     ap.add_argument("--halo", type=float)
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--no-whole-order", action="store_true",
+                    help="tiles analyse in their own wavelet order (as before docs/tiles.md#the-wavelet-order)")
     ap.add_argument("--exact", action="store_true", help="also the exact-charts noise (30x slower)")
     ap.add_argument("--option", action="append", default=[], help="NAME=VALUE for every run (tiled and untiled)")
     ap.add_argument("--tile-option", action="append", default=[], help="NAME=VALUE for the tiles only")
@@ -78,6 +80,8 @@ def main():
         return out
 
     common = parse(a.option)
+    if a.no_whole_order:
+        tiles._whole_order = lambda whole_index, bounds: geoshift.WaveletOptions()
     mesh = geoshift.procedural_terrain(a.size, seed=a.seed)
     base = dict(preset="terrain-bms", levels=3, passes=3, threads=a.threads, **common)
 
