@@ -309,9 +309,10 @@ def filter_mesh_tiled(mesh: geoshift.Mesh, request: FilterRequest, tile: float, 
 
 # --- rasters: dask.array.map_overlap -----------------------------------------------------------
 
-def _raster_block(block: np.ndarray, transform, request: FilterRequest, unit: float, signal: str, tile: int,
-                  halo_cells: int, block_info=None):
-    """One raster task: the grid terrain of the block (with its halo), filtered; NaN stays NaN."""
+def _raster_block(block: np.ndarray, rank: np.ndarray, transform, request: FilterRequest, unit: float, bounds,
+                  signal: str, tile: int, halo_cells: int, block_info=None):
+    """One raster task: the grid terrain of the block (with its halo), filtered; NaN stays NaN. rank:
+    each cell's vertex index in the whole raster's terrain, for the whole's wavelet order."""
     # map_overlap's blocks start `depth` before their chunk (not before the raster's first cell)
     chunk = block_info[0]["chunk-location"] if block_info is not None else (0, 0)
     r0, c0 = max(0, chunk[0] * tile - halo_cells), max(0, chunk[1] * tile - halo_cells)
@@ -326,7 +327,7 @@ def _raster_block(block: np.ndarray, transform, request: FilterRequest, unit: fl
     try:
         mesh = geoshift.grid_terrain(block, t, geographic_to_meters=False)
         req = FilterRequest(signal, request.preset, request.levels, request.alpha, dict(request.options, threads=1))
-        filtered = req.run(mesh, unit).signal[signal]
+        filtered = req.run(mesh, unit, wavelet=_whole_order(rank[~np.isnan(block)], bounds)).signal[signal]
     except InputError as e:
         raise InputError(f"{name}: {e}") from None
     valid = ~np.isnan(block)
@@ -335,38 +336,36 @@ def _raster_block(block: np.ndarray, transform, request: FilterRequest, unit: fl
 
 
 def filter_raster_tiled(values: np.ndarray, transform, request: FilterRequest, tile: int, client, *,
-                        halo_cells: Optional[int] = None, unit: Optional[float] = None, log=None):
+                        halo_cells: Optional[int] = None, unit: Optional[float] = None, bounds=None, log=None):
     """The elevation raster filtered as the signal _ELEVATION of its grid terrain, in chunks of
-    tile x tile cells with map_overlap (depth = the halo in cells). Returns the filtered raster."""
+    tile x tile cells with map_overlap (depth = the halo in cells). unit and bounds (the whole
+    terrain's coarse AEL and wavelet cost bands, _raster_stats) default to the whole raster's,
+    analysed here. Returns (the filtered raster, the reach, the unit)."""
     import dask.array as da
     options, levels, alpha, signal = request.resolved()
     cell = math.hypot(transform[1], transform[4])
     fine = cell * (2 + math.sqrt(2)) / 3  # a grid's AEL: two axis edges and a diagonal per quad
     if unit is None:
-        # the whole raster's coarse AEL: the same edge statistics as for meshes, tile by tile
-        rows, cols = values.shape
-        futures = []
-        for r0 in range(0, rows, tile):
-            for c0 in range(0, cols, tile):
-                block = values[r0:r0 + tile, c0:c0 + tile]
-                if np.count_nonzero(~np.isnan(block)) >= 3:
-                    futures.append(client.submit(_raster_stats, block, levels, tuple(transform), pure=False))
-        stats = client.gather(futures)
-        unit = sum(s[0] for s in stats) / max(1e-300, sum(s[1] for s in stats))
+        # the whole raster's coarse AEL and cost bands, as for meshes (unit="whole")
+        total, count, bounds = _raster_stats(values, levels, tuple(transform))
+        unit = total / max(1e-300, count)
     reach = filter_reach(options, levels, unit, fine)
     depth = halo_cells if halo_cells is not None else int(math.ceil(reach.halo / cell))
     depth = min(depth, tile)
     if log:
         log(f"raster {values.shape}, chunks {tile}, halo {depth} cells; coarse AEL {unit:.4g}; {reach.describe()}")
     arr = da.from_array(values, chunks=(tile, tile))
+    # a cell's vertex in the whole raster's terrain: grid_terrain makes one per valid cell, row-major
+    valid = ~np.isnan(values)
+    rank = da.from_array((np.cumsum(valid.ravel()) - 1).reshape(values.shape), chunks=(tile, tile))
     req = FilterRequest(signal if request.signal is None else request.signal, request.preset, request.levels,
                         request.alpha, request.options)
     sig = req.signal or "_ELEVATION"
     if sig == "terrain":
         sig = "_ELEVATION"
-    filtered = arr.map_overlap(_raster_block, depth=depth, boundary="none", dtype=np.float64, trim=True,
-                               transform=tuple(transform), request=req, unit=unit, signal=sig, tile=tile,
-                               halo_cells=depth)
+    filtered = da.map_overlap(_raster_block, arr, rank, depth=depth, boundary="none", dtype=np.float64, trim=True,
+                              transform=tuple(transform), request=req, unit=unit, bounds=bounds, signal=sig,
+                              tile=tile, halo_cells=depth)
     return client.compute(filtered).result(), reach, unit
 
 

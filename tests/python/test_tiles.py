@@ -172,19 +172,21 @@ def test_raster_map_overlap_matches_untiled(client, big_terrain):
     transform = (0.0, 1.0, 0.0, 0.0, 0.0, -1.0)
     request = tiles.FilterRequest(preset="terrain-bms", signal="_ELEVATION", levels=3, options={"passes": 3})
     whole = geoshift.grid_terrain(z, transform)
-    unit = tiles._raster_stats(z, 6)
-    unit = unit[0] / unit[1]
+    total, count, bounds = tiles._raster_stats(z, 3)
+    unit = total / count
     ref = request.run(whole, unit).signal["_ELEVATION"]
     noise = geoshift.mean_shift(whole, "_ELEVATION", preset="terrain-bms", levels=3, passes=3, unit=unit,
                                 chart_cell=0.5).signal["_ELEVATION"] - ref
-    out, reach, used = tiles.filter_raster_tiled(z, transform, request, 128, client, unit=unit)
+    out, reach, used = tiles.filter_raster_tiled(z, transform, request, 128, client)
+    assert used == unit
     assert out.shape == z.shape and np.isnan(out[100:104, 30:40]).all()
     d = np.abs(out[~np.isnan(z)] - ref)
     n = np.abs(noise)
     report(f"raster map_overlap (terrain-bms, 3 passes, 3 levels, on _ELEVATION, 257x257 cells, chunks 128, halo "
            f"{int(np.ceil(reach.halo))} cells): max {d.max():.3g} m, p99 {np.percentile(d, 99):.3g} m; own noise "
            f"max {n.max():.3g}, p99 {np.percentile(n, 99):.3g}")
-    assert np.percentile(d, 99) <= 2 * np.percentile(n, 99)
+    # the blocks analyse in the whole raster's wavelet order: as close as the meshes' tiles
+    assert np.percentile(d, 99) <= np.percentile(n, 99) and (d > 1).mean() <= (n > 1).mean()
 
 
 def test_batch_of_files_one_task_a_file(client, tmp_path, terrain):
