@@ -136,11 +136,33 @@ FileFormat formatFromPath(const std::string& path) {
                      "'; geoshift reads and writes .gltf, .glb, .obj, .off, .ply and .stl");
 }
 
+namespace {
+
+// A file whose first bytes are another format's signature was misnamed: say so rather than let
+// the extension's reader report whatever the other format's bytes look like to it.
+void checkSignature(const std::string& path, FileFormat format) {
+  std::ifstream in(path, std::ios::binary);
+  char head[5] = {};
+  in.read(head, sizeof head);
+  const std::string start(head, static_cast<size_t>(in.gcount()));
+  const std::string ext = fs::path(path).extension().string();
+  if (start.size() >= 4 && start.compare(0, 4, "glTF") == 0 && !io::isGltfFamily(format))
+    io::fail(path, "the file is a binary glTF (it starts with 'glTF'), not a " + ext +
+                       " file as its name says; rename it to .glb");
+  if ((start.compare(0, 4, "ply\n") == 0 || start.compare(0, 5, "ply\r\n") == 0) && format != FileFormat::Ply)
+    io::fail(path, "the file is a PLY file (its first line is 'ply'), not a " + ext +
+                       " file as its name says; rename it to .ply");
+}
+
+}  // namespace
+
 Document readDocument(const std::string& path, const ReadOptions& options) {
   const FileFormat format = formatFromPath(path);
   std::error_code ec;
   if (!fs::exists(path, ec)) io::fail(path, "file not found");
   if (fs::is_directory(path, ec)) io::fail(path, "is a directory, not a mesh file");
+  if (fs::file_size(path, ec) == 0 && !ec) io::fail(path, "the file is empty (0 bytes)");
+  checkSignature(path, format);
   switch (format) {
     case FileFormat::Gltf:
     case FileFormat::Glb: return io::readGltf(path, format, options);
