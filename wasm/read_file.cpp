@@ -98,7 +98,15 @@ val readFileChecked(const std::string& name, const val& bytes, double maxVertice
 }  // namespace
 
 val readFile(const std::string& name, const val& bytes, double maxVertices) {
-  return guarded([&] { return readFileChecked(name, bytes, maxVertices); });
+  val result = guarded([&] { return readFileChecked(name, bytes, maxVertices); });
+  // The heap's limit may be the page's budget rather than wasm32's 4 GB (geoshift.worker.ts).
+  if (result["outOfMemory"].isTrue())
+    result.set("error", bareName(name) + ": out of memory: reading it needs more memory than the WebAssembly heap may grow to");
+  return result;
+}
+
+val readFileWithDefaultLimit(const std::string& name, const val& bytes) {
+  return readFile(name, bytes, static_cast<double>(ReadOptions{}.maxVertices));
 }
 
 }  // namespace geoshift::wasm

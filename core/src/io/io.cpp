@@ -2,7 +2,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -21,11 +25,40 @@ void fail(const std::string& path, const std::string& what) {
 
 bool isGltfFamily(FileFormat f) { return f == FileFormat::Gltf || f == FileFormat::Glb; }
 
+#ifndef __EMSCRIPTEN__
 std::string formatNumber(double v) {
   char buf[64];
   auto r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
 }
+
+bool parseDouble(const char* first, const char* last, double& value) {
+  const auto r = std::from_chars(first, last, value);
+  return r.ec == std::errc() && r.ptr == last;
+}
+#else
+std::string formatNumber(double v) {
+  if (std::isnan(v)) return std::signbit(v) ? "-nan" : "nan";
+  if (std::isinf(v)) return v < 0 ? "-inf" : "inf";
+  char buf[64];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+bool parseDouble(const char* first, const char* last, double& value) {
+  // from_chars' grammar: no leading space or '+', no hexadecimal prefix.
+  if (first == last || *first == '+' || std::isspace(static_cast<unsigned char>(*first))) return false;
+  const std::string text(first, last);
+  if (text.find_first_of("xX") != std::string::npos) return false;
+  errno = 0;
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && errno != ERANGE;
+}
+#endif
 
 std::string readWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

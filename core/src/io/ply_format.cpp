@@ -238,8 +238,7 @@ double Records::text(Type t, const std::string& what) {
     return static_cast<double>(v);
   }
   double v = 0;
-  const auto r = std::from_chars(first, last, v);
-  if (r.ec != std::errc() || r.ptr != last) fail("'" + tok + "' is not a number (" + what + ")");
+  if (!io::parseDouble(first, last, v)) fail("'" + tok + "' is not a number (" + what + ")");
   return v;
 }
 
