@@ -37,15 +37,37 @@ bool parseDouble(const char* first, const char* last, double& value) {
   return r.ec == std::errc() && r.ptr == last;
 }
 #else
+// As std::to_chars(first, last, v): the fewest significant digits that read back as v, written
+// fixed or in printf's %e style, whichever is shorter (fixed on a tie).
 std::string formatNumber(double v) {
   if (std::isnan(v)) return std::signbit(v) ? "-nan" : "nan";
   if (std::isinf(v)) return v < 0 ? "-inf" : "inf";
-  char buf[64];
+  char sci[64];
   for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v) break;
+    std::snprintf(sci, sizeof sci, "%.*e", digits - 1, v);
+    if (std::strtod(sci, nullptr) == v) break;
   }
-  return buf;
+  // sci = [-]d[.ddd]e±XX: its digits and exponent give the fixed form.
+  const std::string s(sci);
+  const size_t e = s.find('e');
+  const bool negative = s[0] == '-';
+  std::string digits;
+  for (size_t i = negative ? 1 : 0; i < e; ++i)
+    if (s[i] != '.') digits += s[i];
+  const int exponent = std::atoi(s.c_str() + e + 1);
+  const int n = static_cast<int>(digits.size());
+  std::string fixed = negative ? "-" : "";
+  if (exponent >= n - 1) {
+    // An integer: printf's %f writes its exact digits (beyond 17 they are not all zeros).
+    char whole[400];
+    std::snprintf(whole, sizeof whole, "%.0f", v);
+    fixed = whole;
+  } else if (exponent >= 0) {
+    fixed += digits.substr(0, static_cast<size_t>(exponent) + 1) + "." + digits.substr(static_cast<size_t>(exponent) + 1);
+  } else {
+    fixed += "0." + std::string(static_cast<size_t>(-exponent - 1), '0') + digits;
+  }
+  return fixed.size() <= s.size() ? fixed : s;
 }
 
 bool parseDouble(const char* first, const char* last, double& value) {

@@ -116,7 +116,7 @@ Header parseHeader(const std::string& path, const std::string& b) {
       const auto r = std::from_chars(count.data(), count.data() + count.size(), n);
       if (e.name.empty() || count.empty() || r.ec != std::errc() || r.ptr != count.data() + count.size())
         io::fail(path, at + ": malformed element line '" + line + "' (expected: element NAME COUNT)");
-      e.count = static_cast<size_t>(n);
+      e.count = n;
       h.elements.push_back(e);
     } else if (word == "property") {
       if (h.elements.empty()) io::fail(path, at + ": property before any element");
@@ -162,7 +162,7 @@ Header parseHeader(const std::string& path, const std::string& b) {
       io::fail(path, "element '" + e.name + "' declares " + std::to_string(e.count) +
                          " records, more than the remaining " + std::to_string(left) +
                          " bytes of the file can hold (truncated file or wrong count)");
-    left -= std::min(left, e.count * minRecord);
+    left -= std::min(left, static_cast<size_t>(e.count) * minRecord);  // fits: checked above
   }
   return h;
 }

@@ -25,7 +25,9 @@ struct Property {
 
 struct Element {
   std::string name;
-  size_t count = 0;
+  // 64 bits in every build: a declared count must not wrap in wasm32's 32-bit size_t before it is
+  // checked against the file's size.
+  std::uint64_t count = 0;
   std::vector<Property> props;
   int find(const std::string& property) const;  // index or -1
 };
