@@ -54,6 +54,7 @@ val readFileChecked(const std::string& name, const val& bytes, double maxVertice
   {
     std::ofstream out(file.name, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
+    out.close();
     if (!out) throw std::bad_alloc();  // MEMFS fails a write only when JS cannot grow its array
   }
 
