@@ -160,6 +160,7 @@ const files = {
   'obj-two-coordinates.obj': 'v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n',
   'obj-vertices-only.obj': 'v 0 0 0\nv 1 0 0\nv 0 1 0\n',
   'obj-is-a-glb.obj': triangleGlb(),
+  'obj-binary.obj': Buffer.from([0x7f, 0x45, 0x4c, 0x46, 2, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0]),
   // OFF
   'empty.off': '',
   'off-face-past-last-vertex.off': 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n',

@@ -69,6 +69,9 @@ Document readObj(const std::string& path, const ReadOptions& options) {
   source->format = FileFormat::Obj;
   ObjSource& src = source->obj;
   src.text = readWholeFile(path);
+  // NUL never occurs in OBJ text; tinyobjloader would read binary data as lines of nothing.
+  if (src.text.find('\0') != std::string::npos)
+    fail(path, "not a text OBJ file: it holds NUL bytes (binary data)");
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
