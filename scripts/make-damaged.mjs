@@ -21,7 +21,7 @@ const u16 = (values) => Buffer.from(new Uint16Array(values).buffer);
 const u32 = (values) => Buffer.from(new Uint32Array(values).buffer);
 
 /** A GLB container around `json` and `bin` (chunks padded to 4 bytes), as the glTF 2.0 spec lays it out. */
-function glb(json, bin = Buffer.alloc(0), { version = 2 } = {}) {
+function glb(json, bin = Buffer.alloc(0), { version = 2, emptyBin = false } = {}) {
   const pad = (buffer, byte) => Buffer.concat([buffer, Buffer.alloc((4 - (buffer.length % 4)) % 4, byte)]);
   const jsonChunk = pad(Buffer.from(typeof json === 'string' ? json : JSON.stringify(json)), 0x20);
   const binChunk = pad(bin, 0);
@@ -31,7 +31,7 @@ function glb(json, bin = Buffer.alloc(0), { version = 2 } = {}) {
     h.writeUInt32LE(type, 4);
     return Buffer.concat([h, data]);
   };
-  const body = Buffer.concat([chunk(jsonChunk, 0x4e4f534a), bin.length ? chunk(binChunk, 0x004e4942) : Buffer.alloc(0)]);
+  const body = Buffer.concat([chunk(jsonChunk, 0x4e4f534a), bin.length || emptyBin ? chunk(binChunk, 0x004e4942) : Buffer.alloc(0)]);
   const header = Buffer.alloc(12);
   header.writeUInt32LE(0x46546c67, 0);
   header.writeUInt32LE(version, 4);
@@ -127,6 +127,7 @@ const files = {
   'not-a-glb.glb': Buffer.from('this is not a binary glTF file at all\n'),
   'glb-version-1.glb': triangleGlb().fill(1, 4, 5),
   'glb-truncated.glb': triangleGlb().subarray(0, triangleGlb().length - 20),
+  'glb-empty-bin-chunk.glb': glb({ asset: { version: '2.0' } }, Buffer.alloc(0), { emptyBin: true }),
   'glb-malformed-json.glb': glb('{"asset": {"version": "2.0"}, "meshes": [', Buffer.alloc(4)),
   // glTF / GLB: objects and the references between them
   'glb-accessor-count-beyond-view.glb': triangleGlb({ edit: (j) => (j.accessors[0].count = 300) }),

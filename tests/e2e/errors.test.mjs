@@ -44,7 +44,8 @@ const cases = [
     contents: JSON.stringify({ ...tetraJson, buffers: [{ uri: 'tetra%20data.bin', byteLength: 480 }] }),
     reason: /File not found : tetra data\.bin/,
   },
-  { name: 'empty.glb', contents: glb({ asset: { version: '2.0' } }, Buffer.alloc(0)), reason: /no triangles/ },
+  { name: 'empty-bin.glb', contents: glb({ asset: { version: '2.0' } }, Buffer.alloc(0)), reason: /the GLB has an empty BIN chunk \(0 bytes\)/ },
+  { name: 'no-mesh.gltf', contents: JSON.stringify({ asset: { version: '2.0' } }), reason: /no triangles/ },
   { name: 'model.fbx', contents: 'Kaydara FBX Binary', reason: /unknown file extension '\.fbx'; geoshift reads and writes/ },
   {
     name: 'points.ply',

@@ -230,6 +230,12 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
       uint32_t len = 0;
       std::memcpy(&len, bytes.data() + 12, 4);
       if (20 + static_cast<size_t>(len) <= bytes.size()) checkJson(path, bytes.substr(20, len));
+      // tinygltf refuses an empty BIN chunk as "must have 4 bytes or more, but got 4".
+      uint32_t bin[2] = {};
+      const size_t binStart = 20 + static_cast<size_t>(len);
+      if (binStart + 8 <= bytes.size()) std::memcpy(bin, bytes.data() + binStart, 8);
+      if (bin[1] == 0x004e4942 && bin[0] == 0)
+        fail(path, "the GLB has an empty BIN chunk (0 bytes); a GLB without binary data has no BIN chunk");
     }
   } else {
     const size_t first = bytes.find_first_not_of(" \t\r\n");
