@@ -221,9 +221,9 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
     uint32_t header[3] = {};
     std::memcpy(header, bytes.data(), std::min<size_t>(bytes.size(), sizeof header));
     if (bytes.size() >= 8 && header[1] != 2)
-      fail(path, "GLB version " + std::to_string(header[1]) + "; geoshift reads glTF 2.0 (version 2)");
+      fail(path, "cannot read glTF: GLB version " + std::to_string(header[1]) + "; geoshift reads glTF 2.0 (version 2)");
     if (bytes.size() >= 12 && header[2] > bytes.size())
-      fail(path, "the GLB header says " + std::to_string(header[2]) + " bytes, the file has " +
+      fail(path, "cannot read glTF: the GLB header says " + std::to_string(header[2]) + " bytes, the file has " +
                      std::to_string(bytes.size()) + " (truncated file)");
     // GLB: JSON chunk length at byte 12, chunk data at byte 20.
     if (bytes.size() >= 20) {
@@ -235,7 +235,7 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
       const size_t binStart = 20 + static_cast<size_t>(len);
       if (binStart + 8 <= bytes.size()) std::memcpy(bin, bytes.data() + binStart, 8);
       if (bin[1] == 0x004e4942 && bin[0] == 0)
-        fail(path, "the GLB has an empty BIN chunk (0 bytes); a GLB without binary data has no BIN chunk");
+        fail(path, "cannot read glTF: the GLB has an empty BIN chunk (0 bytes); a GLB without binary data has no BIN chunk");
     }
   } else {
     const size_t first = bytes.find_first_not_of(" \t\r\n");
