@@ -197,8 +197,10 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   // The candidates race in step, one pass each in turn. A candidate stops after `patience` passes
   // that did not lower its risk by 0.2% of the noise variance (on smooth shapes the risk keeps
   // creeping down for dozens of passes by less), and, once it has run `patience` passes, as soon as
-  // its best risk is 2% of the noise variance above the leader's: it is not going to catch up, and
-  // the passes it would have run are half the cost on meshes where one candidate clearly fits.
+  // its best risk is kRaceMargin of the noise variance above the leader's: it is unlikely to catch
+  // up, and a lead smaller than that is within what one probe can tell apart anyway. The passes it
+  // would have run are half the cost (docs/denoising.md#the-default-pipeline).
+  constexpr double kRaceMargin = 0.005;
   struct Run {
     int steps;
     double rangeBandwidth;
@@ -254,7 +256,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     double leader = runs.front().best;
     for (const Run& run : runs) leader = std::min(leader, run.best);
     for (Run& run : runs)
-      if (run.active && run.t >= o.patience && run.best > leader + 0.02 * sigma * sigma) run.active = false;
+      if (run.active && run.t >= o.patience && run.best > leader + kRaceMargin * sigma * sigma) run.active = false;
   }
   result.estimatedError = std::sqrt(std::max(0.0, bestRisk.unbiased)) / ael;
   mesh.positions() = std::move(best);
