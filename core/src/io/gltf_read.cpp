@@ -191,13 +191,19 @@ std::vector<Eigen::Matrix4d> worldMatrices(const tinygltf::Model& model, const s
       i = parent[i];
     }
     if (i >= 0 && state[i] == 1) {
-      std::string cycle = "node " + std::to_string(i);
-      int k = i, shown = 0;
-      do {
-        k = parent[k];
-        cycle += " -> " + (++shown > 8 ? std::string("...") : "node " + std::to_string(k));
-      } while (k != i && shown <= 8);
-      fail(path, "node " + std::to_string(i) + " is its own ancestor (" + cycle +
+      std::vector<int> cycle{i};  // upwards from i back to i, then read downwards
+      for (int k = parent[i]; k != i; k = parent[k]) cycle.push_back(k);
+      cycle.push_back(i);
+      std::string text;
+      for (size_t k = cycle.size(); k-- > 0;) {
+        if (cycle.size() > 10 && k == cycle.size() - 9) {
+          text += " -> ...";
+          k = 1;
+          continue;
+        }
+        text += (text.empty() ? "node " : " -> node ") + std::to_string(cycle[k]);
+      }
+      fail(path, "node " + std::to_string(i) + " is its own ancestor (" + text +
                      ", each the parent of the next): a glTF node hierarchy may not contain cycles");
     }
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 
 #include <tiffio.h>
@@ -70,6 +71,32 @@ std::string getAscii(TIFF* tif, uint32_t tag) {
   return s ? std::string(s) : std::string();
 }
 
+// The most bytes one stored byte can decode to under a compression scheme, so that what a file
+// declares (pixels x sample size) is checked against the bytes it holds before anything is
+// allocated: a 200-byte file cannot make us allocate gigabytes. PackBits repeats one byte at most
+// 128 times for a 2-byte run; an LZW code (9 bits or more) emits at most 4096 bytes; zlib's
+// deflate stops at 1032:1. Other codecs (LZMA, ZSTD, JPEG, ...) get a generous 2^16.
+double maxExpansion(uint16_t compression) {
+  switch (compression) {
+    case COMPRESSION_NONE: return 1;
+    case COMPRESSION_PACKBITS: return 64;
+    case COMPRESSION_LZW: return 3641;  // 4096 bytes per 9 bits
+    case COMPRESSION_ADOBE_DEFLATE:
+    case COMPRESSION_DEFLATE: return 1032;
+    default: return 65536;
+  }
+}
+
+// Bytes of strip or tile data the file holds: the byte counts, each clipped to the file's size.
+double storedBytes(TIFF* t, bool tiled, double fileSize) {
+  uint64_t* counts = nullptr;
+  if (!TIFFGetField(t, tiled ? TIFFTAG_TILEBYTECOUNTS : TIFFTAG_STRIPBYTECOUNTS, &counts) || !counts) return 0;
+  const uint32_t n = tiled ? TIFFNumberOfTiles(t) : TIFFNumberOfStrips(t);
+  double sum = 0;
+  for (uint32_t i = 0; i < n; ++i) sum += std::min(static_cast<double>(counts[i]), fileSize);
+  return std::min(sum, fileSize);
+}
+
 }  // namespace
 
 ElevationGrid readGeoTiff(const std::string& path) {
@@ -100,6 +127,21 @@ ElevationGrid readGeoTiff(const std::string& path) {
   if (!okFormat || spp < 1)
     fail("unsupported samples: " + std::to_string(bits) + "-bit, sample format " + std::to_string(format) +
          " (8-64 bit integers and 32/64-bit floats are supported)");
+
+  // Decoded bytes the blocks declare (tiles are whole even where they overhang the image), against
+  // what the stored bytes can decode to.
+  const bool tiled = TIFFIsTiled(t);
+  uint16_t compression = COMPRESSION_NONE;
+  TIFFGetFieldDefaulted(t, TIFFTAG_COMPRESSION, &compression);
+  const double declared = tiled ? static_cast<double>(TIFFNumberOfTiles(t)) * static_cast<double>(TIFFTileSize64(t))
+                                : static_cast<double>(w) * h * (bits / 8) * (planar == PLANARCONFIG_CONTIG ? spp : 1);
+  std::error_code ec;
+  const auto fileSize = std::filesystem::file_size(path, ec);
+  const double stored = storedBytes(t, tiled, ec ? 0.0 : static_cast<double>(fileSize));
+  if (declared > maxExpansion(compression) * stored)
+    fail(std::to_string(w) + " x " + std::to_string(h) + " pixels of " + std::to_string(bits) + "-bit samples need " +
+         io::formatNumber(declared) + " bytes of " + (tiled ? "tiles" : "strips") + ", more than the " + io::formatNumber(stored) +
+         " bytes of them in the file can hold (compression " + std::to_string(compression) + ")");
 
   ElevationGrid g;
   g.width = static_cast<int>(w);

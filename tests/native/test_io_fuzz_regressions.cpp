@@ -1,0 +1,76 @@
+// Regression tests for what fuzzing found (fuzz/, scripts/fuzz.sh, docs/io.md#fuzzing): each input is
+// rebuilt here from what made it fail, small enough to read, and must now give a clean error or a
+// correct result.
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "geoshift/error.hpp"
+#include "geoshift/terrain.hpp"
+#include "support.hpp"
+
+using namespace geoshift;
+using namespace geoshift::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// A little-endian TIFF with one IFD at byte 8 of (tag, type, count, value) entries whose values fit
+// in 4 bytes (SHORT 3 or LONG 4), then `tail` bytes of zeros where the strip or tile data would be.
+struct TiffEntry {
+  std::uint16_t tag, type;
+  std::uint32_t value;
+};
+
+std::string tiffBytes(std::vector<TiffEntry> entries, size_t tail) {
+  std::string b = std::string("II*\0", 4) + std::string("\x08\0\0\0", 4);
+  auto put = [&](auto v) { b.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  put(static_cast<std::uint16_t>(entries.size()));
+  for (const TiffEntry& e : entries) {
+    put(e.tag), put(e.type), put(std::uint32_t{1});
+    if (e.type == 3) put(static_cast<std::uint16_t>(e.value)), put(std::uint16_t{0});
+    else put(e.value);
+  }
+  put(std::uint32_t{0});
+  b.append(tail, '\0');
+  return b;
+}
+
+// One strip of `bytes` bytes right after the IFD (8 + 2 + 12 x 9 + 4 = 122; with 10 entries 134).
+std::string stripTiff(std::uint32_t width, std::uint32_t height, std::uint16_t compression, std::uint32_t bytes) {
+  return tiffBytes({{256, 4, width}, {257, 4, height}, {258, 3, 8}, {259, 3, compression}, {262, 3, 1},
+                    {273, 4, 122}, {277, 3, 1}, {278, 4, height}, {279, 4, bytes}},
+                   bytes);
+}
+
+}  // namespace
+
+TEST_CASE("GeoTIFF: pixels a file declares are checked against the bytes it holds before allocating",
+          "[io][terrain][geotiff][fuzz]") {
+  const auto dir = tempDir("io-fuzz-tiff");
+  // 132 bytes declaring 16384 x 16384 8-bit pixels in one uncompressed strip of 10 bytes: the
+  // reader used to allocate 2 GB of cells (and a 256 MB strip) before libtiff found the data short.
+  spit(dir / "huge.tif", stripTiff(16384, 16384, 1, 10));
+  CHECK(std::filesystem::file_size(dir / "huge.tif") == 132);
+  CHECK_THAT(errorOf([&] { readGeoTiff((dir / "huge.tif").string()); }),
+             Contains("huge.tif: 16384 x 16384 pixels of 8-bit samples need 268435456 bytes of strips, more than the 10 "
+                      "bytes of them in the file can hold (compression 1)"));
+  // Deflate decodes at most 1032 bytes per stored byte: 100 bytes cannot hold 268 MB either.
+  spit(dir / "deflate.tif", stripTiff(16384, 16384, 8, 100));
+  CHECK_THAT(errorOf([&] { readGeoTiff((dir / "deflate.tif").string()); }),
+             Contains("more than the 100 bytes of them in the file can hold (compression 8)"));
+  // Tiles count whole: one 4096 x 4096 tile for a 1 x 1 image needs 16 MB of decoded bytes.
+  spit(dir / "tile.tif", tiffBytes({{256, 4, 1}, {257, 4, 1}, {258, 3, 8}, {259, 3, 1}, {262, 3, 1}, {277, 3, 1},
+                                    {322, 4, 4096}, {323, 4, 4096}, {324, 4, 134}, {325, 4, 16}},
+                                   16));
+  CHECK_THAT(errorOf([&] { readGeoTiff((dir / "tile.tif").string()); }),
+             Contains("1 x 1 pixels of 8-bit samples need 16777216 bytes of tiles, more than the 16 bytes"));
+  // The same layout with all its bytes present reads: 4 x 3 zeros.
+  spit(dir / "small.tif", stripTiff(4, 3, 1, 12));
+  const ElevationGrid g = readGeoTiff((dir / "small.tif").string());
+  CHECK(g.width == 4);
+  CHECK(g.height == 3);
+  CHECK(g.values == std::vector<double>(12, 0.0));
+}
