@@ -1,13 +1,15 @@
-// Regression tests for what fuzzing found (fuzz/, scripts/fuzz.sh, docs/io.md#fuzzing): each input is
-// rebuilt here from what made it fail, small enough to read, and must now give a clean error or a
-// correct result.
+// Regression tests for the defects the fuzz harnesses found, or that writing them did (fuzz/,
+// scripts/fuzz.sh, docs/io.md#fuzzing): each input is rebuilt here from what made it fail, small
+// enough to read, and must now give a clean error or a correct result.
 #include <catch2/catch.hpp>
 
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "geoshift/error.hpp"
+#include "geoshift/mesh.hpp"
 #include "geoshift/terrain.hpp"
 #include "support.hpp"
 
@@ -73,4 +75,29 @@ TEST_CASE("GeoTIFF: pixels a file declares are checked against the bytes it hold
   CHECK(g.width == 4);
   CHECK(g.height == 3);
   CHECK(g.values == std::vector<double>(12, 0.0));
+}
+
+TEST_CASE("welding with a tolerance copes with coordinates far beyond its grid", "[mesh][weld][fuzz]") {
+  // fuzz_soup's seed `huge` welded with tolerance 0.3: 1e308 / 0.3 overflowed the grid cell's 64-bit
+  // index (undefined behaviour). Cells are clamped now; the distance test still decides what merges.
+  const std::vector<Vec3> p = {{0, 0, 0}, {1e308, 0, 0}, {0.1, 0, 0}, {1e308, 0, 0}, {-1e308, 1e308, 0}, {2, 0, 0}};
+  WeldOptions o;
+  o.tolerance = 0.3;
+  const Weld w = weld(p, o);
+  CHECK(w.vertexOf == std::vector<int>{0, 1, 0, 1, 2, 3});
+  CHECK(w.mergedCount == 2);
+  // A far cell is shared by points that are not within the tolerance: they stay apart.
+  const Weld far = weld({{1e300, 0, 0}, {2e300, 0, 0}}, o);
+  CHECK(far.vertexOf == std::vector<int>{0, 1});
+  o.tolerance = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THAT(errorOf([&] { weld(p, o); }), Contains("weld tolerance must be a finite number"));
+  // Built into a mesh: the near corner welds, the far vertex stays, isolated.
+  MeshBuildOptions b;
+  b.weldOptions.tolerance = 0.3;
+  const MeshBuild m = buildMesh({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.1, 0, 0}, {1e308, 1e308, -1e308}},
+                                 {{0, 1, 2}, {3, 2, 1}}},
+                                b);
+  CHECK(m.vertexOf == std::vector<int>{0, 1, 2, 0, 3});
+  CHECK(m.mesh.faceCount() == 2);
+  CHECK(m.mesh.isIsolated(3));
 }
