@@ -19,20 +19,24 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// A little-endian TIFF with one IFD at byte 8 of (tag, type, count, value) entries whose values fit
-// in 4 bytes (SHORT 3 or LONG 4), then `tail` bytes of zeros where the strip or tile data would be.
+// A little-endian TIFF with one IFD at byte 8 of (tag, type, value, count) entries whose values fit
+// in 4 bytes (stored inline), then `tail` bytes of zeros where the strip or tile data would be, at
+// dataOffset(entries).
 struct TiffEntry {
   std::uint16_t tag, type;
   std::uint32_t value;
+  std::uint32_t count = 1;
 };
+
+std::uint32_t dataOffset(size_t entries) { return static_cast<std::uint32_t>(8 + 2 + 12 * entries + 4); }
 
 std::string tiffBytes(std::vector<TiffEntry> entries, size_t tail) {
   std::string b = std::string("II*\0", 4) + std::string("\x08\0\0\0", 4);
   auto put = [&](auto v) { b.append(reinterpret_cast<const char*>(&v), sizeof v); };
   put(static_cast<std::uint16_t>(entries.size()));
   for (const TiffEntry& e : entries) {
-    put(e.tag), put(e.type), put(std::uint32_t{1});
-    if (e.type == 3) put(static_cast<std::uint16_t>(e.value)), put(std::uint16_t{0});
+    put(e.tag), put(e.type), put(e.count);
+    if (e.type == 3 && e.count == 1) put(static_cast<std::uint16_t>(e.value)), put(std::uint16_t{0});
     else put(e.value);
   }
   put(std::uint32_t{0});
@@ -40,11 +44,14 @@ std::string tiffBytes(std::vector<TiffEntry> entries, size_t tail) {
   return b;
 }
 
-// One strip of `bytes` bytes right after the IFD (8 + 2 + 12 x 9 + 4 = 122; with 10 entries 134).
-std::string stripTiff(std::uint32_t width, std::uint32_t height, std::uint16_t compression, std::uint32_t bytes) {
-  return tiffBytes({{256, 4, width}, {257, 4, height}, {258, 3, 8}, {259, 3, compression}, {262, 3, 1},
-                    {273, 4, 122}, {277, 3, 1}, {278, 4, height}, {279, 4, bytes}},
-                   bytes);
+// One 8-bit strip of `bytes` bytes right after the IFD, and `extra` entries (tags above 279).
+std::string stripTiff(std::uint32_t width, std::uint32_t height, std::uint16_t compression, std::uint32_t bytes,
+                      const std::vector<TiffEntry>& extra = {}) {
+  std::vector<TiffEntry> e = {{256, 4, width}, {257, 4, height}, {258, 3, 8},  {259, 3, compression}, {262, 3, 1},
+                              {273, 4, 0},     {277, 3, 1},      {278, 4, height}, {279, 4, bytes}};
+  e.insert(e.end(), extra.begin(), extra.end());
+  e[5].value = dataOffset(e.size());
+  return tiffBytes(e, bytes);
 }
 
 }  // namespace
@@ -55,7 +62,7 @@ TEST_CASE("GeoTIFF: pixels a file declares are checked against the bytes it hold
   // 132 bytes declaring 16384 x 16384 8-bit pixels in one uncompressed strip of 10 bytes: the
   // reader used to allocate 2 GB of cells (and a 256 MB strip) before libtiff found the data short.
   spit(dir / "huge.tif", stripTiff(16384, 16384, 1, 10));
-  CHECK(std::filesystem::file_size(dir / "huge.tif") == 132);
+  CHECK(std::filesystem::file_size(dir / "huge.tif") == 132);  // 122 bytes of header and IFD
   CHECK_THAT(errorOf([&] { readGeoTiff((dir / "huge.tif").string()); }),
              Contains("huge.tif: 16384 x 16384 pixels of 8-bit samples need 268435456 bytes of strips, more than the 10 "
                       "bytes of them in the file can hold (compression 1)"));
@@ -65,7 +72,7 @@ TEST_CASE("GeoTIFF: pixels a file declares are checked against the bytes it hold
              Contains("more than the 100 bytes of them in the file can hold (compression 8)"));
   // Tiles count whole: one 4096 x 4096 tile for a 1 x 1 image needs 16 MB of decoded bytes.
   spit(dir / "tile.tif", tiffBytes({{256, 4, 1}, {257, 4, 1}, {258, 3, 8}, {259, 3, 1}, {262, 3, 1}, {277, 3, 1},
-                                    {322, 4, 4096}, {323, 4, 4096}, {324, 4, 134}, {325, 4, 16}},
+                                    {322, 4, 4096}, {323, 4, 4096}, {324, 4, dataOffset(10)}, {325, 4, 16}},
                                    16));
   CHECK_THAT(errorOf([&] { readGeoTiff((dir / "tile.tif").string()); }),
              Contains("1 x 1 pixels of 8-bit samples need 16777216 bytes of tiles, more than the 16 bytes"));
@@ -100,4 +107,19 @@ TEST_CASE("welding with a tolerance copes with coordinates far beyond its grid",
   CHECK(m.vertexOf == std::vector<int>{0, 1, 2, 0, 3});
   CHECK(m.mesh.faceCount() == 2);
   CHECK(m.mesh.isIsolated(3));
+}
+
+TEST_CASE("GeoTIFF: georeferencing tags stored with another type are errors, not read at the wrong size",
+          "[io][terrain][geotiff][fuzz]") {
+  const auto dir = tempDir("io-fuzz-tiff-tags");
+  // fuzz_tif: ModelTiepoint (33922) stored as 4 ASCII bytes was read as 4 doubles (32 bytes), past
+  // the end of libtiff's copy of the tag (heap-buffer-overflow under AddressSanitizer).
+  const std::uint32_t abc = 'a' | 'b' << 8 | 'c' << 16;
+  spit(dir / "tie.tif", stripTiff(4, 3, 1, 12, {{33922, 2, abc, 4}}));
+  CHECK_THAT(errorOf([&] { readGeoTiff((dir / "tie.tif").string()); }),
+             Contains("tie.tif: GeoTIFF tag 33922 (ModelTiepoint) is stored as TIFF type 2; GeoTIFF stores it as DOUBLE (12)"));
+  // The key directory as LONGs instead of SHORTs.
+  spit(dir / "keys.tif", stripTiff(4, 3, 1, 12, {{34735, 4, 1}}));
+  CHECK_THAT(errorOf([&] { readGeoTiff((dir / "keys.tif").string()); }),
+             Contains("GeoTIFF tag 34735 (GeoKeyDirectory) is stored as TIFF type 4; GeoTIFF stores it as SHORT (3)"));
 }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <type_traits>
 
 #include <tiffio.h>
 
@@ -34,11 +35,19 @@ struct Closer {
   void operator()(TIFF* t) const { TIFFClose(t); }
 };
 
-// Reads a tag's array whatever way libtiff registered it (known or anonymous field).
+// Reads a tag's array whatever way libtiff registered it (known or anonymous field). libtiff does
+// not know the GeoTIFF tags, so it registers them with the type the file gives: a tag stored with
+// another type than GeoTIFF's (DOUBLE for the matrices, SHORT for the keys) is an error, not
+// values read at the wrong size.
 template <class T>
-std::vector<T> getArray(TIFF* tif, uint32_t tag) {
+std::vector<T> getArray(TIFF* tif, uint32_t tag, const char* name, const std::string& path) {
   const TIFFField* f = TIFFFindField(tif, tag, TIFF_ANY);
   if (!f) return {};
+  const TIFFDataType want = std::is_same_v<T, double> ? TIFF_DOUBLE : TIFF_SHORT;
+  if (TIFFFieldDataType(f) != want || TIFFFieldSetGetSize(f) != static_cast<int>(sizeof(T)))
+    io::fail(path, std::string("GeoTIFF tag ") + std::to_string(tag) + " (" + name + ") is stored as TIFF type " +
+                       std::to_string(static_cast<int>(TIFFFieldDataType(f))) + "; GeoTIFF stores it as " +
+                       (want == TIFF_DOUBLE ? "DOUBLE (12)" : "SHORT (3)"));
   void* data = nullptr;
   uint32_t n = 0;
   if (TIFFFieldPassCount(f)) {
@@ -217,7 +226,7 @@ ElevationGrid readGeoTiff(const std::string& path) {
   }
 
   // Georeferencing.
-  const auto keys = getArray<uint16_t>(t, kGeoKeys);
+  const auto keys = getArray<uint16_t>(t, kGeoKeys, "GeoKeyDirectory", path);
   int modelType = 0, rasterType = 1;
   if (keys.size() >= 4) {
     const size_t nk = std::min<size_t>(keys[3], (keys.size() - 4) / 4);
@@ -230,9 +239,9 @@ ElevationGrid readGeoTiff(const std::string& path) {
   }
   g.geographic = modelType == 2;
   const double shift = rasterType == 2 ? 0.5 : 0.0;  // PixelIsPoint: tie points name cell centres
-  const auto scale = getArray<double>(t, kPixelScale);
-  const auto tie = getArray<double>(t, kTiepoint);
-  const auto m = getArray<double>(t, kTransformation);
+  const auto scale = getArray<double>(t, kPixelScale, "ModelPixelScale", path);
+  const auto tie = getArray<double>(t, kTiepoint, "ModelTiepoint", path);
+  const auto m = getArray<double>(t, kTransformation, "ModelTransformation", path);
   if (m.size() >= 16) {
     g.transform = {m[3], m[0], m[1], m[7], m[4], m[5]};
     g.transform[0] -= shift * (m[0] + m[1]);
