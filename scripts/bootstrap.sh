@@ -61,7 +61,12 @@ jobs=$(nproc 2>/dev/null || echo 2)
 
 # --- native build ----------------------------------------------------------------------------
 log "native build (build/native-release)"
-[ -f build/native-release/CMakeCache.txt ] || cmake --preset native-release >/dev/null
+# With the Python package the native build also compiles the module, from the same core objects
+# (position-independent, GEOSHIFT_PYTHON): pip then only copies it instead of compiling the core
+# again in build/python. A build dir configured before keeps its settings (setup.py then falls back).
+native=()
+[ "$python" = 1 ] && native=(-DGEOSHIFT_PYTHON=ON -DPython_EXECUTABLE=/usr/bin/python3)
+[ -f build/native-release/CMakeCache.txt ] || cmake --preset native-release "${native[@]}" >/dev/null
 cmake --build build/native-release -j "$jobs"
 
 # --- wasm build ------------------------------------------------------------------------------
@@ -74,13 +79,14 @@ if [ "$wasm" = 1 ]; then
 fi
 # --- Python package --------------------------------------------------------------------------
 # Debian's interpreter (a python3 earlier on PATH may not see Debian's packages); the venv sees
-# them (--system-site-packages) and gets the package by pip, offline, built in build/python.
+# them (--system-site-packages) and gets the package by pip, offline.
 if [ "$python" = 1 ]; then
   stamp=build/venv/.geoshift-installed
   [ -x build/venv/bin/python ] || /usr/bin/python3 -m venv --system-site-packages build/venv
   if [ ! -f "$stamp" ] || [ -n "$(find python core CMakeLists.txt setup.py pyproject.toml -newer "$stamp" -type f 2>/dev/null | head -1)" ]; then
-    log "Python package (build/python, pip install into build/venv)"
-    GEOSHIFT_BUILD_JOBS="$jobs" build/venv/bin/pip install --no-build-isolation --no-deps --quiet .
+    log "Python package (the native build's module, or build/python; pip install into build/venv)"
+    GEOSHIFT_PYTHON_BUILD_DIR="$PWD/build/native-release" GEOSHIFT_BUILD_JOBS="$jobs" \
+      build/venv/bin/pip install --no-build-isolation --no-deps --quiet .
     touch "$stamp"
   else
     log "Python package up to date"

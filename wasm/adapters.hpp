@@ -2,6 +2,8 @@
 // Adapters between JS values and the core: typed arrays are copied in once and out once, and every
 // failure comes back as a value ({ ok: false, error }) instead of a C++ exception, so the JS side
 // never needs exception support or `delete()` calls. Types are declared in geoshift.d.ts.
+#include <string>
+
 #include <emscripten/val.h>
 
 namespace geoshift::wasm {
@@ -40,6 +42,15 @@ emscripten::val runWithoutProgress(int handle, const std::string& op, const emsc
 // analysisReused and coarseOpMs, and leaves the session as it was (preview.cpp).
 emscripten::val preview(int handle, const std::string& op, const emscripten::val& params, int maxVertices, const emscripten::val& onProgress);
 emscripten::val previewWithoutProgress(int handle, const std::string& op, const emscripten::val& params, int maxVertices);
+
+// readFile(name, bytes: Uint8Array, maxVertices?): the core's readers (readDocument) on a file's
+// bytes, the name choosing the format by extension as in the CLI; each part is also built as the
+// filters build it. Returns { ok: true, parts: [{ label, vertices, triangles, instances, report }],
+// vertices, triangles, warnings } or { ok: false, error[, outOfMemory] } with the CLI's message
+// (read_file.cpp). Nothing of the file is kept.
+emscripten::val readFile(const std::string& name, const emscripten::val& bytes, double maxVertices);
+// The same with the CLI's default limit (ReadOptions::maxVertices).
+emscripten::val readFileWithDefaultLimit(const std::string& name, const emscripten::val& bytes);
 
 // ops(): the names of the ops this build knows (the web app asks before offering a preset).
 emscripten::val listOps();

@@ -14,6 +14,8 @@ EMSCRIPTEN_BINDINGS(geoshift) {
   emscripten::function("run", &geoshift::wasm::runWithoutProgress);
   emscripten::function("preview", &geoshift::wasm::preview);
   emscripten::function("preview", &geoshift::wasm::previewWithoutProgress);
+  emscripten::function("readFile", &geoshift::wasm::readFile);
+  emscripten::function("readFile", &geoshift::wasm::readFileWithDefaultLimit);
   emscripten::function("ops", &geoshift::wasm::listOps);
   emscripten::function("presets", &geoshift::wasm::listPresets);
 }

@@ -162,6 +162,32 @@ export interface RunFailure extends Failure {
 }
 export type RunResult = RunSuccess | RunFailure;
 
+/** One mesh of a file as the core's readers found it (readFile). */
+export interface FilePart {
+  /** As in the CLI's messages: "mesh 0 'Duck' primitive 0", the OBJ file's name, ... */
+  label: string;
+  vertices: number;
+  triangles: number;
+  /** Nodes that draw it (glTF); 1 for the other formats. */
+  instances: number;
+  /** What building it as the filters do found and repaired. */
+  report: BuildReport;
+}
+export interface ReadFileSuccess {
+  ok: true;
+  parts: FilePart[];
+  /** Sums over the parts (each part counted once, whatever its instances). */
+  vertices: number;
+  triangles: number;
+  /** What the CLI prints as warnings: content passed through untouched, and why. */
+  warnings: string[];
+}
+export interface ReadFileFailure extends Failure {
+  /** Set when the heap could not grow enough to read the file. */
+  outOfMemory?: true;
+}
+export type ReadFileResult = ReadFileSuccess | ReadFileFailure;
+
 /** Called with the fraction done of the named stage; return true to stop the run. */
 export type ProgressCallback = (fraction: number, stage: string) => boolean | void;
 
@@ -192,6 +218,12 @@ export interface GeoshiftModule {
    * maxVertices analyses the kept coarse mesh further), analysisMs, analysisReused and coarseOpMs.
    */
   preview<Op extends OpName>(handle: number, op: Op, params: OpParams[Op], maxVertices: number, onProgress?: ProgressCallback): RunResult;
+  /**
+   * The core's readers (the CLI's) on a file's bytes; the name's extension picks the format. The
+   * error is the CLI's message, beginning with the name. maxVertices defaults to the CLI's limit
+   * (50 000 000; --max-vertices). Nothing of the file is kept.
+   */
+  readFile(name: string, bytes: Uint8Array, maxVertices?: number): ReadFileResult;
   /** Names of the ops this build knows. */
   ops(): string[];
   /**
@@ -234,6 +266,11 @@ export interface FilterPreset {
 
 /** Emscripten module options the app may need; all optional. */
 export interface GeoshiftModuleOptions {
+  /**
+   * The heap (geoshift_web only, built with IMPORTED_MEMORY): a WebAssembly.Memory of at least
+   * 1024 pages (64 MB); its maximum is the most the module may grow to.
+   */
+  wasmMemory?: WebAssembly.Memory;
   /** The .wasm bytes; required under Node for the CommonJS flavours (no fetch from a path). */
   wasmBinary?: ArrayBuffer | Uint8Array;
   /** Where the .wasm (and the threaded flavours' .worker.js) are; default: beside the .js. */

@@ -3,9 +3,9 @@
 // Candidates x(k, t): k Taubin steps, then t passes of [blurring mean shift of the face normals →
 // vertex update]. For each, Stein's unbiased risk estimate of the error along the vertex normals is
 //   SURE = Σ_i ((x_i − y_i)·N_i)² − mσ² + 2σ² div,  div ≈ Σ_i b_i ((x'_i − x_i)·N_i) / ε,
-// with y the input, N its vertex normals, σ the noise level, and x' the same candidate computed from
-// y + ε b N for a random ±1 probe b (Monte-Carlo SURE, Ramani et al. 2008). The candidate of least
-// SURE is returned. Every candidate runs on both copies, so the cost is twice the passes computed.
+// with y the input, N the vertex normals of y after a few Taubin steps, σ the noise level, and x'
+// the same candidate computed from y + ε b N for a random ±1 probe b (Monte-Carlo SURE, Ramani et
+// al. 2008). The candidate of least SURE is returned. Every candidate runs on both copies, so the cost is twice the passes computed.
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -35,6 +35,8 @@ void validate(const DenoiseOptions& o) {
   if (o.maxPasses < 1 || o.maxPasses > 10000) bad("maximum passes must be in [1, 10000] (got " + std::to_string(o.maxPasses) + ")");
   if (o.patience < 1) bad("patience must be at least 1 (got " + std::to_string(o.patience) + ")");
   if (o.fixedPasses < 0 || o.fixedPasses > 10000) bad("fixed passes must be in [0, 10000] (got " + std::to_string(o.fixedPasses) + ")");
+  if (o.riskNormalSmoothing < 0 || o.riskNormalSmoothing > 10000)
+    bad("risk normal smoothing must be in [0, 10000] steps (got " + std::to_string(o.riskNormalSmoothing) + ")");
   if (o.vertexIterations < 1 || o.vertexIterations > 10000)
     bad("vertex iterations must be in [1, 10000] (got " + std::to_string(o.vertexIterations) + ")");
 }
@@ -69,6 +71,16 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   const double sigma = level * ael;
   const int n = mesh.vertexCount();
   const std::vector<Vec3> input = mesh.positions();
+  // The passes run on `mesh` itself (below): on an exception it gets its input back. assign() into a
+  // vector of the same size does not allocate, so the restore cannot throw.
+  struct Restore {
+    Mesh& mesh;
+    const std::vector<Vec3>& input;
+    bool armed = true;
+    ~Restore() {
+      if (armed) mesh.positions().assign(input.begin(), input.end());
+    }
+  } restore{mesh, input};
   ParallelOptions parallel;
   parallel.threads = o.threads;
 
@@ -84,7 +96,9 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   result.neighborhoodBytes = hoods.bytes();
 
-  Mesh work = mesh;  // connectivity for the passes; positions swapped in and out
+  // The passes use `mesh` for its connectivity, with each track's positions swapped in and out (a
+  // copy would cost 50 bytes a vertex); the chosen positions go back into it at the end.
+  Mesh& work = mesh;
   auto presmooth = [&](Track& t, int steps) {
     if (steps == 0) return;
     TaubinOptions taubin = o.supportSmoothing;
@@ -95,9 +109,8 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   };
   auto pass = [&](Track& t, double rangeBandwidth) {
     work.positions() = t.positions;
-    const std::vector<Vec3> targets =
-        shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), rangeBandwidth, parallel);
-    VertexUpdateResult u = updateVertices(work, targets, *t.update);
+    std::vector<Vec3> targets = shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), rangeBandwidth, parallel);
+    VertexUpdateResult u = updateVertices(work, std::move(targets), *t.update);
     result.limitedSteps += u.limitedSteps;
     t.positions = std::move(u.positions);
     ++result.passesRun;
@@ -110,7 +123,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     update.flipGuard = FlipGuard::InputOrTarget;
     update.parallel = parallel;
     work.positions() = start;
-    update.referenceNormals = faceNormals(work);
+    update.referenceNormals = referenceNormalsOf(work);
     return update;
   };
   const VertexUpdateOptions inputUpdate = updateFrom(input);
@@ -127,11 +140,23 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     result.rangeBandwidth = hr;
     result.passes = o.fixedPasses;
     mesh.positions() = std::move(x.positions);
+    restore.armed = false;
     return finish();
   }
 
   // The probe: ±1 per vertex with a normal, from a generator the standard specifies bit for bit.
-  const std::vector<Vec3> normals = vertexNormals(mesh);
+  // The directions the error is measured along: normals of a lightly smoothed copy of the input.
+  std::vector<Vec3> normals;
+  if (o.riskNormalSmoothing > 0) {
+    TaubinOptions taubin = o.supportSmoothing;
+    taubin.iterations = o.riskNormalSmoothing;
+    work.positions() = input;
+    taubinSmooth(work, taubin);
+    normals = vertexNormals(work);
+  } else {
+    work.positions() = input;
+    normals = vertexNormals(work);
+  }
   const double eps = 0.01 * sigma;
   std::vector<double> probe(n, 0);
   int m = 0;
@@ -210,6 +235,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       score(run);
     }
   }
+  std::vector<Vec3>().swap(perturbed);  // the probe tracks have started from it
   const double total = static_cast<double>(runs.size()) * o.maxPasses;
   for (int done = 0;;) {
     bool any = false;
@@ -232,6 +258,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   result.estimatedError = std::sqrt(std::max(0.0, bestRisk.unbiased)) / ael;
   mesh.positions() = std::move(best);
+  restore.armed = false;
   return finish();
 }
 

@@ -47,7 +47,7 @@ DenoiseResult denoisePaper(Mesh& mesh, const DenoiseOptions& all, const Progress
     const int n = mesh.vertexCount();
     double iterations = 0;
     VertexUpdateOptions update = options.vertexUpdate;
-    if (update.referenceNormals.empty()) update.referenceNormals = faceNormals(mesh);  // the input's, every pass
+    if (update.referenceNormals.empty()) update.referenceNormals = referenceNormalsOf(mesh);  // the input's, every pass
     for (int pass = 0; pass < options.passes; ++pass) {
       const double from = 0.02 + 0.98 * pass / options.passes, to = 0.02 + 0.98 * (pass + 1) / options.passes;
       std::vector<double> flat;
@@ -67,15 +67,15 @@ DenoiseResult denoisePaper(Mesh& mesh, const DenoiseOptions& all, const Progress
       std::vector<Vec3> normals(n);
       for (int v = 0; v < n; ++v) normals[v] = Vec3(filtered.row(v)[0], filtered.row(v)[1], filtered.row(v)[2]);
       progress.step(from + 0.8 * (to - from), "vertex update");
-      const std::vector<Vec3> targets = options.faceNormals == FaceNormalRule::Mean
+      std::vector<Vec3> targets = options.faceNormals == FaceNormalRule::Mean
                                             ? faceNormalsFromVertexNormals(mesh, normals)
                                             : consensusFaceNormals(mesh, normals,
                                                                    options.consensusBandwidth > 0 ? options.consensusBandwidth
                                                                                                   : ms.rangeBandwidth);
-      const VertexUpdateResult u = updateVertices(mesh, targets,
-                                                  update, progress.slice(from + 0.8 * (to - from), to));
+      VertexUpdateResult u = updateVertices(mesh, std::move(targets), update,
+                                            progress.slice(from + 0.8 * (to - from), to));
       result.limitedSteps += u.limitedSteps;
-      mesh.positions() = u.positions;
+      mesh.positions() = std::move(u.positions);
     }
     result.meanIterations = iterations / options.passes;
   } catch (...) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -26,9 +27,9 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOpti
   const double reach = out.radius + ael;  // a face whose centroid is within r has its corners within r + AEL
   const double k = 0.5 / (out.spatialBandwidth * out.spatialBandwidth);
 
-  // Faces in blocks: each block's rows are built in parallel into per-face buffers, then appended in
-  // face order, so the result does not depend on the threads and peak scratch stays one block.
-  constexpr int kBlock = 4096;
+  // Faces in blocks: each block's rows are built in parallel into per-face buffers, then packed in
+  // face order into the block's array, so the result does not depend on the threads.
+  constexpr int kBlock = FaceNeighborhoods::kBlock;
   const int threads = resolveThreads(options.parallel.threads);
   struct Scratch {
     std::optional<LogMap> logMap;
@@ -43,7 +44,7 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOpti
     geometry.emplace(mesh);
     base.emplace(*geometry);
   }
-  std::vector<Vec3> centroids;
+  std::vector<Vec3>& centroids = out.centroids;
   if (!options.geodesic) {
     centroids.resize(nf);
     for (int f = 0; f < nf; ++f) {
@@ -59,7 +60,8 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOpti
   std::vector<std::vector<int>> rowFace(kBlock);
   std::vector<std::vector<float>> rowWeight(kBlock);
   out.start.reserve(nf + 1);
-  out.start.push_back(0);
+  out.faceBlocks.reserve((nf + kBlock - 1) / kBlock);
+  if (options.geodesic) out.weightBlocks.reserve((nf + kBlock - 1) / kBlock);
   for (int block = 0; block < nf; block += kBlock) {
     const int count = std::min(kBlock, nf - block);
     ParallelOptions par = options.parallel;
@@ -111,7 +113,7 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOpti
             if (d2 > out.radius * out.radius) continue;
             s.queue.push_back(g);
             faces.push_back(g);
-            weights.push_back(static_cast<float>(mean_shift_detail::kernelExp(-d2 * k)));
+            weights.push_back(0.0f);  // recomputed from the centroids when used
           }
         }
       }
@@ -129,32 +131,62 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& mesh, const FaceNeighborhoodOpti
       faces.swap(sortedFaces);
       weights.swap(sortedWeights);
     });
+    size_t length = 0;
+    for (int i = 0; i < count; ++i) length += rowFace[i].size();
+    if (length > static_cast<size_t>(std::numeric_limits<int>::max()))
+      throw InputError("face neighbourhoods: more than " + std::to_string(std::numeric_limits<int>::max()) +
+                       " entries in a block of " + std::to_string(kBlock) + " faces; use a smaller radius");
+    std::vector<int>& faces = out.faceBlocks.emplace_back();
+    faces.reserve(length);
     for (int i = 0; i < count; ++i) {
-      out.face.insert(out.face.end(), rowFace[i].begin(), rowFace[i].end());
-      out.spatialWeight.insert(out.spatialWeight.end(), rowWeight[i].begin(), rowWeight[i].end());
-      out.start.push_back(static_cast<int>(out.face.size()));
+      out.start.push_back(static_cast<int>(faces.size()));
+      faces.insert(faces.end(), rowFace[i].begin(), rowFace[i].end());
     }
-    if (block == 0 && count < nf) {
-      // Rows are about the same length all over a mesh: reserve from the first block's mean with a
-      // margin, so that the arrays are not regrown (a regrowth holds old and new copies at once).
-      const size_t expected = static_cast<size_t>(1.08 * out.face.size() / count * nf) + 64;
-      out.face.reserve(expected);
-      out.spatialWeight.reserve(expected);
+    if (options.geodesic) {
+      std::vector<float>& weights = out.weightBlocks.emplace_back();
+      weights.reserve(length);
+      for (int i = 0; i < count; ++i) weights.insert(weights.end(), rowWeight[i].begin(), rowWeight[i].end());
     }
   }
+  out.start.push_back(out.faceBlocks.empty() ? 0 : static_cast<int>(out.faceBlocks.back().size()));
   return out;
+}
+
+namespace {
+
+// The spatial kernel of a straight distance, exactly as stored for geodesic rows: a float.
+inline float straightWeight(const std::vector<Vec3>& centroids, int f, int g, double k) {
+  return static_cast<float>(mean_shift_detail::kernelExp(-(centroids[g] - centroids[f]).squaredNorm() * k));
+}
+
+double spatialExponent(const FaceNeighborhoods& h) { return 0.5 / (h.spatialBandwidth * h.spatialBandwidth); }
+
+}  // namespace
+
+float FaceNeighborhoods::spatialWeight(int f, int j) const {
+  const int at = span(f).first + j;
+  if (!weightBlocks.empty()) return weightBlocks[f / kBlock][at];
+  return straightWeight(centroids, f, faceBlocks[f / kBlock][at], spatialExponent(*this));
+}
+
+size_t FaceNeighborhoods::bytes() const {
+  size_t n = start.capacity() * sizeof(int) + centroids.capacity() * sizeof(Vec3) +
+             (faceBlocks.capacity() + weightBlocks.capacity()) * sizeof(std::vector<int>);
+  for (const auto& b : faceBlocks) n += b.capacity() * sizeof(int);
+  for (const auto& b : weightBlocks) n += b.capacity() * sizeof(float);
+  return n;
 }
 
 std::vector<Vec3> shiftFaceNormals(const FaceNeighborhoods& hoods, const std::vector<double>& areas,
                                    const std::vector<Vec3>& normals, double rangeBandwidth,
                                    const ParallelOptions& parallel, const Progress& progress) {
-  const int nf = static_cast<int>(hoods.start.size()) - 1;
+  const int nf = hoods.faceCount();
   if (static_cast<int>(normals.size()) != nf || static_cast<int>(areas.size()) != nf)
     throw InputError("face normal shift: " + std::to_string(normals.size()) + " normals and " +
                      std::to_string(areas.size()) + " areas for " + std::to_string(nf) + " faces");
   if (!(rangeBandwidth > 0) || !std::isfinite(rangeBandwidth))
     throw InputError("face normal shift: range bandwidth must be > 0 (got " + std::to_string(rangeBandwidth) + ")");
-  const double k = 0.5 / (rangeBandwidth * rangeBandwidth);
+  const double k = 0.5 / (rangeBandwidth * rangeBandwidth), ks = spatialExponent(hoods);
   std::vector<Vec3> out(nf);
   ParallelOptions par = parallel;
   par.chunk = 256;
@@ -165,9 +197,14 @@ std::vector<Vec3> shiftFaceNormals(const FaceNeighborhoods& hoods, const std::ve
       return;
     }
     Vec3 sum = Vec3::Zero();
-    for (int j = hoods.start[f]; j < hoods.start[f + 1]; ++j) {
-      const int g = hoods.face[j];
-      const double w = hoods.spatialWeight[j] * areas[g] * mean_shift_detail::kernelExp(-(normals[g] - nf0).squaredNorm() * k);
+    const auto [begin, end] = hoods.span(f);
+    const int* faces = hoods.faceBlocks[f / FaceNeighborhoods::kBlock].data();
+    const float* stored = hoods.weightBlocks.empty() ? nullptr : hoods.weightBlocks[f / FaceNeighborhoods::kBlock].data();
+    for (int j = begin; j < end; ++j) {
+      const int g = faces[j];
+      const double range = (normals[g] - nf0).squaredNorm() * k;
+      const double w = stored ? stored[j] * areas[g] * mean_shift_detail::kernelExp(-range)
+                              : areas[g] * mean_shift_detail::kernelExp(-range - (hoods.centroids[g] - hoods.centroids[f]).squaredNorm() * ks);
       sum += w * normals[g];
     }
     const double len = sum.norm();

@@ -17,31 +17,13 @@ std::string vecText(const Vec3& v) {
   return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
 }
 
-// Faces around each vertex, flat: vertex v's faces are [start[v], start[v+1]).
-struct VertexFaces {
-  std::vector<int> start, face;
-};
-
-VertexFaces vertexFaces(const Mesh& mesh) {
-  VertexFaces vf;
-  vf.start.assign(mesh.vertexCount() + 1, 0);
-  for (const Face& t : mesh.faces())
-    for (int v : t) ++vf.start[v + 1];
-  for (int v = 0; v < mesh.vertexCount(); ++v) vf.start[v + 1] += vf.start[v];
-  vf.face.resize(vf.start.back());
-  std::vector<int> fill(vf.start.begin(), vf.start.end() - 1);
-  for (int f = 0; f < mesh.faceCount(); ++f)
-    for (int v : mesh.face(f)) vf.face[fill[v]++] = f;
-  return vf;
-}
-
 Vec3 crossOf(const std::vector<Vec3>& x, const Face& t) {
   return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
 }
 
 }  // namespace
 
-VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& targetNormals,
+VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNormals,
                                   const VertexUpdateOptions& options, const Progress& progress) {
   const int nv = mesh.vertexCount(), nf = mesh.faceCount();
   if (static_cast<int>(targetNormals.size()) != nf) {
@@ -52,15 +34,14 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
     throw InputError("vertex update: iterations must be >= 0 (got " +
                      std::to_string(options.iterations) + ")");
   }
-  std::vector<Vec3> target(nf);
+  std::vector<Vec3> target = std::move(targetNormals);
   for (int f = 0; f < nf; ++f) {
-    const Vec3& n = targetNormals[f];
+    Vec3& n = target[f];
     if (!n.allFinite()) throw InputError("vertex update: target normal of face " + std::to_string(f) + " is not finite " + vecText(n));
     const double len = n.norm();
-    target[f] = len > 0 ? Vec3(n / len) : Vec3::Zero();
+    n = len > 0 ? Vec3(n / len) : Vec3::Zero();
   }
 
-  const VertexFaces vf = vertexFaces(mesh);
   std::vector<char> pinned(nv, 0);
   for (int v = 0; v < nv; ++v)
     pinned[v] = mesh.isIsolated(v) || (options.fixedBoundary && mesh.isBoundaryVertex(v));
@@ -70,9 +51,9 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
     throw InputError("vertex update: " + std::to_string(options.referenceNormals.size()) + " reference normals for " +
                      std::to_string(mesh.faceCount()) + " faces");
   // The caller's reference is read in place (a denoiser's passes share one); only the default is made.
-  std::vector<Vec3> ownReference;
-  if (options.referenceNormals.empty()) ownReference = faceNormals(mesh);
-  const std::vector<Vec3>& inputNormal = options.referenceNormals.empty() ? ownReference : options.referenceNormals;
+  std::vector<Eigen::Vector3f> ownReference;
+  if (options.referenceNormals.empty()) ownReference = referenceNormalsOf(mesh);
+  const std::vector<Eigen::Vector3f>& inputNormal = options.referenceNormals.empty() ? ownReference : options.referenceNormals;
 
   VertexUpdateResult result;
   std::vector<Vec3> x = mesh.positions(), candidate = x, step(nv);
@@ -81,6 +62,7 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
   par.chunk = 1024;
   const Progress quiet;  // the iterations report; the parallel loops inside them do not
   std::vector<Vec3> currentCross(nf);
+  std::vector<double> weight(nf), offset(nf);
   std::vector<double> scale(nv);
   std::vector<char> halvedThisRound(nv);
   std::vector<int> badFaces, touched;
@@ -89,7 +71,7 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
 
   auto faceOk = [&](int f) {
     const Vec3 c = crossOf(candidate, mesh.face(f));
-    const bool keepsInputSide = inputNormal[f].squaredNorm() == 0.0 || c.dot(inputNormal[f]) > 0.0 ||
+    const bool keepsInputSide = inputNormal[f].squaredNorm() == 0.0f || c.dot(inputNormal[f].cast<double>()) > 0.0 ||
                                 (options.flipGuard == FlipGuard::InputOrTarget && c.dot(target[f]) > 0.0);
     const bool keepsCurrentSide = currentCross[f].squaredNorm() == 0.0 || c.dot(currentCross[f]) > 0.0;
     return keepsInputSide && keepsCurrentSide;
@@ -97,22 +79,26 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
 
   for (int it = 0; it < options.iterations; ++it) {
     progress.step(static_cast<double>(it) / options.iterations, "vertex update");
-    // Each vertex gathers over its faces in increasing face order: the sums (and so the results)
-    // are those of a serial pass over the faces, for any thread count.
-    parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { currentCross[f] = crossOf(x, mesh.face(f)); });
+    // Each vertex gathers over its faces in the mesh's counter-clockwise order from its first
+    // half-edge: a fixed order, so the sums (and so the results) do not depend on the threads.
+    // Per face once, not once per corner: its cross product, its weight, and its target plane's
+    // offset n·c (c the centroid), so that a corner x_v is pulled by (n·c − n·x_v) n.
+    parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
+      const Face& t = mesh.face(f);
+      currentCross[f] = crossOf(x, t);
+      weight[f] = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
+      offset[f] = target[f].dot((x[t[0]] + x[t[1]] + x[t[2]]) / 3.0);
+    });
     parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
       Vec3 sum = Vec3::Zero();
       double wsum = 0;
-      for (int k = vf.start[v]; k < vf.start[v + 1]; ++k) {
-        const int f = vf.face[k];
+      mesh.forEachOutgoing(v, [&](int h) {
+        const int f = Mesh::faceOf(h);
         const Vec3& n = target[f];
-        if (n.squaredNorm() == 0) continue;
-        const Face& t = mesh.face(f);
-        const double w = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
-        const Vec3 c = (x[t[0]] + x[t[1]] + x[t[2]]) / 3.0;
-        sum += (w * n.dot(c - x[v])) * n;
-        wsum += w;
-      }
+        if (n.squaredNorm() == 0) return;
+        sum += (weight[f] * (offset[f] - n.dot(x[v]))) * n;
+        wsum += weight[f];
+      });
       step[v] = !pinned[v] && wsum > 0 ? Vec3(sum / wsum) : Vec3::Zero();
       scale[v] = 1.0;
       candidate[v] = x[v] + step[v];
@@ -144,13 +130,13 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
       ++round;
       for (int v : touched) {
         halvedThisRound[v] = 0;
-        for (int k = vf.start[v]; k < vf.start[v + 1]; ++k) {
-          const int f = vf.face[k];
+        mesh.forEachOutgoing(v, [&](int h) {
+          const int f = Mesh::faceOf(h);
           if (badStamp[f] != round && !faceOk(f)) {
             badStamp[f] = round;
             badFaces.push_back(f);
           }
-        }
+        });
       }
       // A bad face whose vertices are all frozen sits at its current, valid position; it cannot
       // stay bad, so the loop ends after at most kMaxHalvings + 1 rounds per vertex.
@@ -164,6 +150,13 @@ VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& tar
     result.maxDisplacement = std::max(result.maxDisplacement, (x[v] - mesh.position(v)).norm());
   result.positions = std::move(x);
   return result;
+}
+
+std::vector<Eigen::Vector3f> referenceNormalsOf(const Mesh& mesh) {
+  const std::vector<Vec3> normals = faceNormals(mesh);
+  std::vector<Eigen::Vector3f> out(normals.size());
+  for (size_t f = 0; f < normals.size(); ++f) out[f] = normals[f].cast<float>();
+  return out;
 }
 
 std::vector<Vec3> faceNormalsFromVertexNormals(const Mesh& mesh,

@@ -144,7 +144,10 @@ bool Analyzer::level(int index, WaveletLevel& L, std::vector<int>* parentFace) {
     candidates.push_back(v);
     cost.push_back(c);
   }
-  const std::vector<int> order = bandedOrder(candidates, cost);
+  const bool given = index < static_cast<int>(opt.costBounds.size()) && !opt.costBounds[index].empty();
+  L.costBounds = given ? opt.costBounds[index] : wavelet_detail::costBandBounds(cost);
+  const std::vector<int> order =
+      bandedOrder(candidates, cost, L.costBounds, opt.wholeIndex.empty() ? nullptr : opt.wholeIndex.data());
   candidates = {};
   cost = {};
 
@@ -342,6 +345,25 @@ Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const Wav
     throw InputError("wavelet analysis: the attributes have " + std::to_string(signals.vertexCount()) +
                      " vertices, the mesh " + std::to_string(n));
   requireFiniteSignals(signals, n);
+  if (!options.wholeIndex.empty()) {
+    if (options.wholeIndex.size() != static_cast<size_t>(n))
+      throw InputError("wavelet analysis: wholeIndex has " + std::to_string(options.wholeIndex.size()) +
+                       " entries for the mesh's " + std::to_string(n) + " vertices");
+    for (int v = 0; v < n; ++v)
+      if (options.wholeIndex[v] < 0 || (v > 0 && options.wholeIndex[v] <= options.wholeIndex[v - 1]))
+        throw InputError("wavelet analysis: wholeIndex must be non-negative and increasing; vertex " +
+                         std::to_string(v) + " has " + std::to_string(options.wholeIndex[v]));
+  }
+  for (size_t l = 0; l < options.costBounds.size(); ++l) {
+    const std::vector<double>& b = options.costBounds[l];
+    if (b.size() >= static_cast<size_t>(wavelet_detail::kCostBands))
+      throw InputError("wavelet analysis: costBounds of level " + std::to_string(l) + " has " + std::to_string(b.size()) +
+                       " bounds; at most " + std::to_string(wavelet_detail::kCostBands - 1));
+    for (size_t k = 0; k < b.size(); ++k)
+      if (!std::isfinite(b[k]) || (k > 0 && b[k] < b[k - 1]))
+        throw InputError("wavelet analysis: costBounds of level " + std::to_string(l) +
+                         " must be finite and ascending (bound " + std::to_string(k) + ")");
+  }
 
   Multiresolution mr;
   mr.fine = mesh;

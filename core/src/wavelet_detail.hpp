@@ -42,10 +42,15 @@ void predictionWeights(int o, const Ring& r, const PositionRows& x, WaveletWeigh
 double turnCosine(int v, const Ring& r, const PositionRows& x);
 
 constexpr int kCostBands = 16;
-constexpr std::size_t kOrderBlock = 4096;
-// The vertices in ascending cost, in kCostBands quantile bands, each band in vertex order, block by
-// block of kOrderBlock vertices (a mesh with fewer candidates is one block).
-std::vector<int> bandedOrder(const std::vector<int>& vertices, const std::vector<double>& cost);
+constexpr std::int64_t kOrderBlock = 4096;
+// Upper bounds of cost bands 0 .. kCostBands-2: quantiles of a sample of the costs.
+std::vector<double> costBandBounds(const std::vector<double>& cost);
+// The vertices (increasing) in ascending cost band (`bounds`), each band in vertex order, block by
+// block of kOrderBlock consecutive indices: `wholeIndex[v]` when given (increasing in v), else v.
+// Every vertex's place depends on its own cost and index only, so a piece of a mesh given the
+// whole's indices and bounds orders its vertices as the whole does.
+std::vector<int> bandedOrder(const std::vector<int>& vertices, const std::vector<double>& cost,
+                             const std::vector<double>& bounds, const std::int64_t* wholeIndex);
 
 class CollapseMesh {
  public:

@@ -56,18 +56,26 @@ double turnCosine(int v, const Ring& r, const PositionRows& x) {
 // Ascending cost in kCostBands quantile bands, each band in vertex order. A strict sort would visit
 // the mesh in random order (ties and noise in the cost), which on large meshes makes every step a
 // cache miss; bands keep the cost ordering where it matters (cheap first) at streaming speed. The
-// bands are taken block by block of kOrderBlock candidates: one sweep of a band over a million-vertex
-// mesh leaves the cache before the next band comes back, while a block's one-rings stay in L2
-// (about 1.4x faster analysis on a 1M terrain). Only vertices near a block seam see another order.
+// bands are taken block by block of kOrderBlock vertex indices: one sweep of a band over a
+// million-vertex mesh leaves the cache before the next band comes back, while a block's one-rings
+// stay in L2 (about 1.4x faster analysis on a 1M terrain). Only vertices near a block seam see
+// another order. Blocks are index ranges, not runs of candidates, and the bounds can be given, so
+// that the place of a vertex depends on nothing but its own cost and index (docs/tiles.md).
 
-std::vector<int> bandedOrder(const std::vector<int>& vertices, const std::vector<double>& cost) {
-  const size_t n = vertices.size();
+std::vector<double> costBandBounds(const std::vector<double>& cost) {
+  const size_t n = cost.size();
   std::vector<double> sample;
   const size_t step = std::max<size_t>(1, n / 4096);
   for (size_t i = 0; i < n; i += step) sample.push_back(cost[i]);
   std::sort(sample.begin(), sample.end());
-  std::vector<double> bounds;  // upper bounds of bands 0 .. kCostBands-2
+  std::vector<double> bounds;
   for (int b = 1; b < kCostBands && !sample.empty(); ++b) bounds.push_back(sample[sample.size() * b / kCostBands]);
+  return bounds;
+}
+
+std::vector<int> bandedOrder(const std::vector<int>& vertices, const std::vector<double>& cost,
+                             const std::vector<double>& bounds, const std::int64_t* wholeIndex) {
+  const size_t n = vertices.size();
   std::vector<unsigned char> band(n);
   // The count of bounds not above the cost is upper_bound's index, without its unpredictable branches.
   const int nb = static_cast<int>(bounds.size());
@@ -76,9 +84,10 @@ std::vector<int> bandedOrder(const std::vector<int>& vertices, const std::vector
     for (int k = 0; k < nb; ++k) b += !(cost[i] < bounds[k]);
     band[i] = static_cast<unsigned char>(b);
   }
+  const auto block = [&](size_t i) { return (wholeIndex ? wholeIndex[vertices[i]] : vertices[i]) / kOrderBlock; };
   std::vector<int> order(n);
-  for (size_t b0 = 0; b0 < n; b0 += kOrderBlock) {
-    const size_t b1 = std::min(n, b0 + kOrderBlock);
+  for (size_t b0 = 0, b1; b0 < n; b0 = b1) {
+    for (b1 = b0 + 1; b1 < n && block(b1) == block(b0);) ++b1;
     std::array<size_t, kCostBands + 1> start{};
     for (size_t i = b0; i < b1; ++i) ++start[band[i] + 1];
     start[0] = b0;

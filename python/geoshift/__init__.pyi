@@ -63,10 +63,13 @@ class WaveletOptions:
     boundary_angle: float
     max_normal_change: float
     keep_level_meshes: bool
+    whole_index: List[int]
+    cost_bounds: List[List[float]]
     def __init__(self, *, levels: int = 2, cost: Literal["integral", "residual"] = "integral",
                  weights: Literal["mean_value", "inverse_distance", "uniform"] = "mean_value",
                  boundary_angle: float = 30.0, max_normal_change: float = 75.0,
-                 keep_level_meshes: bool = False) -> None: ...
+                 keep_level_meshes: bool = False, whole_index: Sequence[int] = (),
+                 cost_bounds: Sequence[Sequence[float]] = ()) -> None: ...
     def to_dict(self) -> Dict[str, Any]: ...
 
 class TaubinOptions:
@@ -243,6 +246,7 @@ class Multiresolution:
     vertex_counts: List[int]
     level_count: int
     coarse_to_mesh: np.ndarray
+    cost_bounds: List[List[float]]
     coarse: Mesh
     def synthesize(self, alpha: Union[float, Sequence[float]] = 0.0, coarse_positions: Any = None,
                    coarse_attributes: Optional[Mapping[str, np.ndarray]] = None, progress: Progress = None) -> Mesh: ...

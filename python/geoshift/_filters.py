@@ -218,6 +218,8 @@ class Multiresolution:
         self.vertex_counts: List[int] = list(handle.vertex_counts)
         self.level_count: int = handle.level_count
         self.coarse_to_mesh: np.ndarray = handle.coarse_to_mesh
+        # per level, the cost-band bounds its candidate order used (WaveletOptions.cost_bounds)
+        self.cost_bounds: List[List[float]] = handle.cost_bounds
         self.coarse = Mesh(handle.coarse_positions, handle.coarse_faces, attributes=handle.coarse_attributes,
                            label=mesh.label + " (coarse)")
 

@@ -55,9 +55,9 @@ class FilterRequest:
         return (o, levels if self.levels is None else self.levels, alpha if self.alpha is None else self.alpha,
                 signal if self.signal is None else self.signal)
 
-    def run(self, mesh: geoshift.Mesh, unit: float, progress=None) -> geoshift.FilterResult:
+    def run(self, mesh: geoshift.Mesh, unit: float, progress=None, wavelet=None) -> geoshift.FilterResult:
         return geoshift.mean_shift(mesh, self.signal, preset=self.preset, levels=self.levels, alpha=self.alpha,
-                                   unit=unit, progress=progress, **self.options)
+                                   unit=unit, progress=progress, wavelet=wavelet, **self.options)
 
 
 # --- the reach of a filter (docs/tiles.md) -------------------------------------------------------
@@ -166,21 +166,37 @@ def submesh(mesh: geoshift.Mesh, tile: Tile) -> geoshift.Mesh:
                          label=f"{mesh.label} {tile.name}")
 
 
-def _edge_stats(piece: geoshift.Mesh, owned: np.ndarray, levels: int, name: str):
+def _whole_order(whole_index: Optional[np.ndarray], bounds) -> geoshift.WaveletOptions:
+    """The wavelet options under which a tile's analysis removes, inside the tile, the vertices the
+    whole's analysis removes: its vertices' indices in the whole and the whole's cost-band bounds
+    (docs/tiles.md#the-wavelet-order)."""
+    w = geoshift.WaveletOptions()
+    if whole_index is not None:
+        w.whole_index = whole_index
+    if bounds is not None:
+        w.cost_bounds = bounds
+    return w
+
+
+def _edge_stats(piece: geoshift.Mesh, owned: np.ndarray, levels: int, name: str,
+                whole_index: Optional[np.ndarray] = None):
+    """(sum, count, cost bounds per level) of the piece's coarse edges with an owned end."""
     try:
-        return _core._coarse_edge_stats(piece._built(), levels, geoshift.WaveletOptions(), owned.astype(np.float64),
-                                        None)
+        return _core._coarse_edge_stats(piece._built(), levels, _whole_order(whole_index, None),
+                                        owned.astype(np.float64), None)
     except InputError as e:
         raise InputError(f"{name}: {e}") from None
 
 
-def _filter_tile(piece: geoshift.Mesh, owned: np.ndarray, request: FilterRequest, unit: float, name: str,
-                 threads: int):
-    """One task: the filtered channels (and positions) of the tile's owned vertices."""
+def _filter_tile(piece: geoshift.Mesh, owned: np.ndarray, whole_index: np.ndarray, request: FilterRequest,
+                 unit: float, bounds, name: str, threads: int):
+    """One task: the filtered channels (and positions) of the tile's owned vertices. whole_index
+    (the tile's vertices' indices in the whole) and bounds (the whole's cost bands, or None) make its
+    wavelet analysis follow the whole's."""
     try:
         req = FilterRequest(request.signal, request.preset, request.levels, request.alpha,
                             dict(request.options, threads=threads))
-        r = req.run(piece, unit)
+        r = req.run(piece, unit, wavelet=_whole_order(whole_index, bounds))
     except InputError as e:
         raise InputError(f"{name}: {e}") from None
     out = {name_: values[owned] for name_, values in r.signal.items()}
@@ -240,15 +256,18 @@ def filter_mesh_tiled(mesh: geoshift.Mesh, request: FilterRequest, tile: float, 
     if log:
         log(f"{len(tiles)} tiles of {side:.4g} (tile {tile} x AEL {fine:.4g}), halo {reach.halo:.4g}; "
             f"{sum(len(t.vertices) for t in tiles)} vertices with halos for {mesh.vertex_count}")
-    # 1. The unit of the spatial options: the whole surface's coarse AEL.
+    # 1. The unit of the spatial options, the whole surface's coarse AEL, and the cost bands of the
+    # whole's wavelet analysis, which the tiles' analyses follow (docs/tiles.md#the-wavelet-order).
     if unit == "whole":
         stats = [_edge_stats(mesh, np.ones(mesh.vertex_count, dtype=bool), levels, mesh.label)]
+        bounds = stats[0][2]
     else:
         with warnings.catch_warnings():
             warnings.filterwarnings("ignore", message="Large object of size")
-            stats = client.gather([client.submit(_edge_stats, pieces[t.index], t.owned, levels, t.name, pure=False)
-                                   for t in tiles])
-    unit = sum(s for s, _ in stats) / max(1e-300, sum(c for _, c in stats))
+            stats = client.gather([client.submit(_edge_stats, pieces[t.index], t.owned, levels, t.name, t.vertices,
+                                                 pure=False) for t in tiles])
+        bounds = None  # each tile its own: the whole's need the whole's analysis
+    unit = sum(s[0] for s in stats) / max(1e-300, sum(s[1] for s in stats))
     estimated = reach
     reach = filter_reach(options, levels, unit, fine)
     if halo is None and reach.halo > estimated.halo:
@@ -261,8 +280,8 @@ def filter_mesh_tiled(mesh: geoshift.Mesh, request: FilterRequest, tile: float, 
     # worker dies is re-run elsewhere from it (scattered data would die with the worker).
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message="Large object of size")
-        futures = [client.submit(_filter_tile, pieces[t.index], t.owned, request, unit, t.name, threads, pure=False)
-                   for t in tiles]
+        futures = [client.submit(_filter_tile, pieces[t.index], t.owned, t.vertices, request, unit, bounds, t.name,
+                                 threads, pure=False) for t in tiles]
     if log:
         import distributed
         for k, _ in enumerate(distributed.as_completed(futures), 1):
@@ -290,9 +309,10 @@ def filter_mesh_tiled(mesh: geoshift.Mesh, request: FilterRequest, tile: float, 
 
 # --- rasters: dask.array.map_overlap -----------------------------------------------------------
 
-def _raster_block(block: np.ndarray, transform, request: FilterRequest, unit: float, signal: str, tile: int,
-                  halo_cells: int, block_info=None):
-    """One raster task: the grid terrain of the block (with its halo), filtered; NaN stays NaN."""
+def _raster_block(block: np.ndarray, rank: np.ndarray, transform, request: FilterRequest, unit: float, bounds,
+                  signal: str, tile: int, halo_cells: int, block_info=None):
+    """One raster task: the grid terrain of the block (with its halo), filtered; NaN stays NaN. rank:
+    each cell's vertex index in the whole raster's terrain, for the whole's wavelet order."""
     # map_overlap's blocks start `depth` before their chunk (not before the raster's first cell)
     chunk = block_info[0]["chunk-location"] if block_info is not None else (0, 0)
     r0, c0 = max(0, chunk[0] * tile - halo_cells), max(0, chunk[1] * tile - halo_cells)
@@ -307,7 +327,7 @@ def _raster_block(block: np.ndarray, transform, request: FilterRequest, unit: fl
     try:
         mesh = geoshift.grid_terrain(block, t, geographic_to_meters=False)
         req = FilterRequest(signal, request.preset, request.levels, request.alpha, dict(request.options, threads=1))
-        filtered = req.run(mesh, unit).signal[signal]
+        filtered = req.run(mesh, unit, wavelet=_whole_order(rank[~np.isnan(block)], bounds)).signal[signal]
     except InputError as e:
         raise InputError(f"{name}: {e}") from None
     valid = ~np.isnan(block)
@@ -316,38 +336,36 @@ def _raster_block(block: np.ndarray, transform, request: FilterRequest, unit: fl
 
 
 def filter_raster_tiled(values: np.ndarray, transform, request: FilterRequest, tile: int, client, *,
-                        halo_cells: Optional[int] = None, unit: Optional[float] = None, log=None):
+                        halo_cells: Optional[int] = None, unit: Optional[float] = None, bounds=None, log=None):
     """The elevation raster filtered as the signal _ELEVATION of its grid terrain, in chunks of
-    tile x tile cells with map_overlap (depth = the halo in cells). Returns the filtered raster."""
+    tile x tile cells with map_overlap (depth = the halo in cells). unit and bounds (the whole
+    terrain's coarse AEL and wavelet cost bands, _raster_stats) default to the whole raster's,
+    analysed here. Returns (the filtered raster, the reach, the unit)."""
     import dask.array as da
     options, levels, alpha, signal = request.resolved()
     cell = math.hypot(transform[1], transform[4])
     fine = cell * (2 + math.sqrt(2)) / 3  # a grid's AEL: two axis edges and a diagonal per quad
     if unit is None:
-        # the whole raster's coarse AEL: the same edge statistics as for meshes, tile by tile
-        rows, cols = values.shape
-        futures = []
-        for r0 in range(0, rows, tile):
-            for c0 in range(0, cols, tile):
-                block = values[r0:r0 + tile, c0:c0 + tile]
-                if np.count_nonzero(~np.isnan(block)) >= 3:
-                    futures.append(client.submit(_raster_stats, block, levels, tuple(transform), pure=False))
-        stats = client.gather(futures)
-        unit = sum(s for s, _ in stats) / max(1e-300, sum(c for _, c in stats))
+        # the whole raster's coarse AEL and cost bands, as for meshes (unit="whole")
+        total, count, bounds = _raster_stats(values, levels, tuple(transform))
+        unit = total / max(1e-300, count)
     reach = filter_reach(options, levels, unit, fine)
     depth = halo_cells if halo_cells is not None else int(math.ceil(reach.halo / cell))
     depth = min(depth, tile)
     if log:
         log(f"raster {values.shape}, chunks {tile}, halo {depth} cells; coarse AEL {unit:.4g}; {reach.describe()}")
     arr = da.from_array(values, chunks=(tile, tile))
+    # a cell's vertex in the whole raster's terrain: grid_terrain makes one per valid cell, row-major
+    valid = ~np.isnan(values)
+    rank = da.from_array((np.cumsum(valid.ravel()) - 1).reshape(values.shape), chunks=(tile, tile))
     req = FilterRequest(signal if request.signal is None else request.signal, request.preset, request.levels,
                         request.alpha, request.options)
     sig = req.signal or "_ELEVATION"
     if sig == "terrain":
         sig = "_ELEVATION"
-    filtered = arr.map_overlap(_raster_block, depth=depth, boundary="none", dtype=np.float64, trim=True,
-                               transform=tuple(transform), request=req, unit=unit, signal=sig, tile=tile,
-                               halo_cells=depth)
+    filtered = da.map_overlap(_raster_block, arr, rank, depth=depth, boundary="none", dtype=np.float64, trim=True,
+                              transform=tuple(transform), request=req, unit=unit, bounds=bounds, signal=sig,
+                              tile=tile, halo_cells=depth)
     return client.compute(filtered).result(), reach, unit
 
 

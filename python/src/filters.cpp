@@ -2,6 +2,9 @@
 // `geoshift filter`, cli/filter_signal.cpp, so both give the same numbers), denoising, smoothing,
 // wavelet analysis and synthesis, curvature.
 #include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <tuple>
 
 #include "bindings.hpp"
 #include "geoshift/bilateral_normal.hpp"
@@ -52,6 +55,20 @@ Inputs inputsOf(const Built& b, const py::handle& colors, const py::dict& attrib
     in.attributes.push_back(std::move(a));
   }
   return in;
+}
+
+// The wavelet options of a call with WaveletOptions::wholeIndex, which Python gives per caller
+// vertex, per mesh vertex (welded vertices take their smallest).
+WaveletOptions onMesh(const Built& b, WaveletOptions w) {
+  if (w.wholeIndex.empty()) return w;
+  const size_t n = b.callerVertices();
+  if (w.wholeIndex.size() != n)
+    throw InputError("wavelet whole_index has " + std::to_string(w.wholeIndex.size()) + " entries for the mesh's " +
+                     std::to_string(n) + " vertices");
+  std::vector<std::int64_t> index(b.mesh().vertexCount(), std::numeric_limits<std::int64_t>::max());
+  for (size_t i = 0; i < n; ++i) index[b.build.vertexOf[i]] = std::min(index[b.build.vertexOf[i]], w.wholeIndex[i]);
+  w.wholeIndex = std::move(index);
+  return w;
 }
 
 struct Source {
@@ -113,7 +130,7 @@ py::dict meanShiftCall(Built& b, const std::vector<std::string>& signal, const p
   hybrid.levels = levels;
   hybrid.alpha = alpha;
   hybrid.filterGeometry = filterGeometry;
-  hybrid.wavelet = wavelet;
+  hybrid.wavelet = onMesh(b, wavelet);
 
   Run run(callback);
   std::vector<Source> sources;
@@ -217,6 +234,8 @@ void bindFilters(py::module_& m) {
   // Sum and count of the coarse mesh's edge lengths after `levels` wavelet levels, over the edges
   // whose ends are `owned` (caller vertices; an edge with one owned end counts half): summed over
   // tiles, the whole surface's coarse AEL, the unit of a tiled hybrid filter's spatial options.
+  // Third, each level's cost-band bounds (WaveletLevel::costBounds): with the whole's, a tile's
+  // analysis orders its candidates as the whole's does (WaveletOptions::costBounds).
   m.def("_coarse_edge_stats", [](Built& b, int levels, const WaveletOptions& wavelet, const py::handle& ownedArray,
                                  const py::object& callback) {
     int dim = 1;
@@ -230,13 +249,15 @@ void bindFilters(py::module_& m) {
       std::vector<int> toFine;
       Multiresolution mr;
       if (levels > 0) {
-        WaveletOptions w = wavelet;
+        WaveletOptions w = onMesh(b, wavelet);
         w.levels = levels;
         mr = analyze(b.mesh(), AttributeSet(b.mesh().vertexCount()), w, progress);
         coarse = &mr.coarse;
         toFine = mr.coarseToFine;
       }
       double sum = 0, count = 0;
+      std::vector<std::vector<double>> bounds;
+      for (const WaveletLevel& l : mr.levels) bounds.push_back(l.costBounds);
       for (int h = 0; h < coarse->halfedgeCount(); ++h) {
         const int t = coarse->twin(h);
         if (t >= 0 && t < h) continue;
@@ -247,7 +268,7 @@ void bindFilters(py::module_& m) {
         sum += weight * (coarse->position(coarse->head(h)) - coarse->position(coarse->tail(h))).norm();
         count += weight;
       }
-      return std::make_pair(sum, count);
+      return std::make_tuple(sum, count, bounds);
     });
   });
 
@@ -330,6 +351,11 @@ void bindFilters(py::module_& m) {
       .def_property_readonly("coarse_positions", [](const Analysis& a) { return fromPoints(a.mr.coarse.positions()); })
       .def_property_readonly("coarse_faces", [](const Analysis& a) { return fromFaces(a.mr.coarse.faces()); })
       .def_property_readonly("coarse_to_mesh", [](const Analysis& a) { return fromVector(a.mr.coarseToFine); })
+      .def_property_readonly("cost_bounds", [](const Analysis& a) {
+        std::vector<std::vector<double>> bounds;
+        for (const WaveletLevel& l : a.mr.levels) bounds.push_back(l.costBounds);
+        return bounds;
+      })
       .def_property_readonly("coarse_attributes", [](const Analysis& a) {
         py::dict out;
         for (const Attribute& at : a.mr.coarseAttributes.all()) out[at.name.c_str()] = fromRows(at.values, at.dim);
@@ -345,7 +371,8 @@ void bindFilters(py::module_& m) {
     Run run(callback);
     auto a = std::make_shared<Analysis>();
     a->built = b;
-    a->mr = run([&](const Progress& p) { return analyze(b->mesh(), set, options, p); });
+    const WaveletOptions w = onMesh(*b, options);
+    a->mr = run([&](const Progress& p) { return analyze(b->mesh(), set, w, p); });
     return a;
   });
 

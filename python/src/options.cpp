@@ -153,7 +153,13 @@ void bindOptions(py::module_& m) {
   wavelet.def_readwrite("levels", &WaveletOptions::levels)
       .def_readwrite("boundary_angle", &WaveletOptions::boundaryAngle)
       .def_readwrite("max_normal_change", &WaveletOptions::maxNormalChange)
-      .def_readwrite("keep_level_meshes", &WaveletOptions::keepLevelMeshes);
+      .def_readwrite("keep_level_meshes", &WaveletOptions::keepLevelMeshes)
+      .def_readwrite("whole_index", &WaveletOptions::wholeIndex,
+                     "For a piece (tile) of a larger mesh: each vertex's index in the whole, increasing "
+                     "(docs/tiles.md); empty: its own")
+      .def_readwrite("cost_bounds", &WaveletOptions::costBounds,
+                     "For a piece (tile) of a larger mesh: the whole's cost-band bounds per level "
+                     "(Multiresolution.cost_bounds); empty: this mesh's own");
   enumField(wavelet, "cost", &WaveletOptions::cost, {{"integral", WaveletCost::Integral}, {"residual", WaveletCost::Residual}});
   enumField(wavelet, "weights", &WaveletOptions::weights,
             {{"mean_value", WaveletWeights::MeanValue},

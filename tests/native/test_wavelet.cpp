@@ -301,3 +301,62 @@ TEST_CASE("cancelling through Progress stops the analysis") {
   p.cancel = &cancel;
   CHECK_THROWS_AS(analyze(m, {}, WaveletOptions{}, p), Cancelled);
 }
+
+TEST_CASE("a piece given the whole's indices and cost bands removes the whole's vertices inside it") {
+  // A tile of a larger mesh (docs/tiles.md#the-wavelet-order): the middle third of a jittered grid
+  // with a margin of a sixth around it, analysed in the whole's order, keeps exactly the coarse
+  // vertices the whole keeps in the middle third.
+  const Mesh whole = meshOf(shapes::grid(150, 0.3, 4));
+  WaveletOptions o;
+  o.levels = 3;
+  const Multiresolution all = analyze(whole, {}, o);
+  Vec3 lo = whole.position(0), hi = lo;
+  for (int v = 0; v < whole.vertexCount(); ++v) {
+    lo = lo.cwiseMin(whole.position(v));
+    hi = hi.cwiseMax(whole.position(v));
+  }
+  const Vec3 side = hi - lo;
+  const auto inside = [&](int v, double from, double to) {
+    const Vec3 f = (whole.position(v) - lo).cwiseQuotient(side);
+    return f.x() >= from && f.x() <= to && f.y() >= from && f.y() <= to;
+  };
+  std::vector<int> local(whole.vertexCount(), -1);
+  std::vector<Vec3> positions;
+  for (int v = 0; v < whole.vertexCount(); ++v)
+    if (inside(v, 1.0 / 6, 5.0 / 6)) {
+      local[v] = static_cast<int>(o.wholeIndex.size());
+      o.wholeIndex.push_back(v);
+      positions.push_back(whole.position(v));
+    }
+  std::vector<Face> faces;
+  for (int f = 0; f < whole.faceCount(); ++f) {
+    const Face& t = whole.face(f);
+    if (local[t[0]] >= 0 && local[t[1]] >= 0 && local[t[2]] >= 0) faces.push_back({local[t[0]], local[t[1]], local[t[2]]});
+  }
+  const Mesh piece(positions, faces);
+  for (const WaveletLevel& l : all.levels) o.costBounds.push_back(l.costBounds);
+  const Multiresolution part = analyze(piece, {}, o);
+
+  std::vector<char> keptWhole(whole.vertexCount(), 0), keptPiece(whole.vertexCount(), 0);
+  for (int v : all.coarseToFine) keptWhole[v] = 1;
+  for (int v : part.coarseToFine) keptPiece[o.wholeIndex[v]] = 1;
+  int core = 0, same = 0;
+  for (int v = 0; v < whole.vertexCount(); ++v)
+    if (inside(v, 1.0 / 3, 2.0 / 3)) {
+      ++core;
+      same += keptWhole[v] == keptPiece[v];
+    }
+  CHECK(core > 2000);
+  CHECK(same == core);
+
+  // Malformed orders are refused, naming what is wrong.
+  WaveletOptions bad = o;
+  bad.wholeIndex.pop_back();
+  CHECK(test::errorOf([&] { analyze(piece, {}, bad); }).find("wholeIndex") != std::string::npos);
+  bad = o;
+  std::swap(bad.wholeIndex[0], bad.wholeIndex[1]);
+  CHECK(test::errorOf([&] { analyze(piece, {}, bad); }).find("increasing") != std::string::npos);
+  bad = o;
+  bad.costBounds[1] = {2.0, 1.0};
+  CHECK(test::errorOf([&] { analyze(piece, {}, bad); }).find("ascending") != std::string::npos);
+}

@@ -63,40 +63,66 @@ def own_noise(big_terrain, untiled):
     return untiled_run(big_terrain, chart_cell=0.5) - untiled
 
 
+def seams(result, mesh, d, own_noise):
+    """Steps of the difference d across the tiles' borders, and the own noise's steps over all edges."""
+    own = owner(result, mesh.vertex_count)
+    assert (own >= 0).all()
+    e = edges(mesh.faces)
+    border = e[own[e[:, 0]] != own[e[:, 1]]]
+    return np.abs(d[border[:, 0]] - d[border[:, 1]]), np.abs(own_noise[e[:, 0]] - own_noise[e[:, 1]]), len(border)
+
+
 def test_tiled_terrain_bms_matches_untiled_within_the_filters_own_noise(client, big_terrain, untiled, own_noise):
     r = tiles.filter_mesh_tiled(big_terrain, request(), 90, client)
     assert len(r.tiles) == 9 and len(set(r.workers)) == 2  # 3 x 3 tiles, both workers used
     assert r.halo_vertices < 5 * big_terrain.vertex_count  # the tiles are real cuts, not the whole terrain
     d = r.mesh.attributes[SIGNAL] - untiled
-    own = owner(r, big_terrain.vertex_count)
-    assert (own >= 0).all()
-    e = edges(big_terrain.faces)
-    border = e[own[e[:, 0]] != own[e[:, 1]]]
-    seam = np.abs(d[border[:, 0]] - d[border[:, 1]])
-    noise_steps = np.abs(own_noise[e[:, 0]] - own_noise[e[:, 1]])
+    seam, noise_steps, borders = seams(r, big_terrain, d, own_noise)
     a, n = np.abs(d), np.abs(own_noise)
     report(f"tiled vs untiled terrain-bms (3 passes, 3 levels), 257x257 procedural, {len(r.tiles)} tiles, halo {r.reach.halo:.1f} m: "
            f"max {a.max():.3g} m, p99 {np.percentile(a, 99):.3g} m, {(a > 1).mean():.2%} over 1 m (heights 0..30 m); "
            f"the filter's own noise (chart cubes of h_s/2 vs h_s): max {n.max():.3g}, p99 {np.percentile(n, 99):.3g}, "
            f"{(n > 1).mean():.2%} over 1 m")
-    report(f"  steps across tile borders ({len(border)} edges): max {seam.max():.3g}, p99 {np.percentile(seam, 99):.3g}; "
+    report(f"  steps across tile borders ({borders} edges): max {seam.max():.3g}, p99 {np.percentile(seam, 99):.3g}; "
            f"the noise's steps over all edges: max {noise_steps.max():.3g}, p99 {np.percentile(noise_steps, 99):.3g}")
-    # Seams are invisible: no step across a border beyond the steps the filter's own noise makes,
-    # and the differences are of the noise's size.
-    assert seam.max() <= 1.1 * noise_steps.max()
-    assert np.percentile(seam, 99) <= 4 * np.percentile(noise_steps, 99)
-    assert np.percentile(a, 99) <= 2 * np.percentile(n, 99)
+    # Seams are invisible: the tiled result is no farther from the untiled one than the filter's own
+    # noise (p99 and the share of vertices off by more than 1 m), and no step across a tile border
+    # is beyond the noise's steps (p99). The code before docs/tiles.md#the-wavelet-order failed all
+    # three (p99 0.19 m against 0.12, 0.63% against 0.07%, steps 0.091 against 0.037).
+    assert np.percentile(a, 99) <= np.percentile(n, 99)
+    assert (a > 1).mean() <= (n > 1).mean()
+    assert np.percentile(seam, 99) <= np.percentile(noise_steps, 99)
+
+
+def test_a_tiles_wavelet_analysis_removes_what_the_wholes_removes_inside_it(big_terrain):
+    # Given its vertices' indices in the whole and the whole's cost bands, a tile's analysis removes
+    # the same vertices as the whole's in the tile's core; in its own order it does not.
+    whole = geoshift.analyze(big_terrain, levels=3)
+    kept = np.zeros(big_terrain.vertex_count, dtype=bool)
+    kept[whole.coarse_to_mesh] = True
+    fine = big_terrain._built().average_edge_length
+    tile = tiles.cut(big_terrain, 90 * fine, 93.0)[4]  # the middle one
+    core = tile.vertices[tile.owned]
+    piece = tiles.submesh(big_terrain, tile)
+
+    def kept_in_core(**order):
+        k = np.zeros(big_terrain.vertex_count, dtype=bool)
+        k[tile.vertices[geoshift.analyze(piece, levels=3, **order).coarse_to_mesh]] = True
+        return k[core]
+
+    assert (kept_in_core(whole_index=tile.vertices, cost_bounds=whole.cost_bounds) == kept[core]).all()
+    assert (kept_in_core() != kept[core]).mean() > 0.1
+    with pytest.raises(geoshift.InputError, match="increasing"):
+        geoshift.analyze(piece, levels=3, whole_index=tile.vertices[::-1].copy())
+    with pytest.raises(geoshift.InputError, match="entries"):
+        geoshift.analyze(piece, levels=3, whole_index=tile.vertices[:-1])
 
 
 def test_without_a_halo_the_seams_show(client, big_terrain, untiled, own_noise):
     # The test above could fail: cut without a halo, the tiles' borders step far beyond the noise.
     r = tiles.filter_mesh_tiled(big_terrain, request(), 90, client, halo=0)
     d = r.mesh.attributes[SIGNAL] - untiled
-    own = owner(r, big_terrain.vertex_count)
-    e = edges(big_terrain.faces)
-    border = e[own[e[:, 0]] != own[e[:, 1]]]
-    seam = np.abs(d[border[:, 0]] - d[border[:, 1]])
-    noise_steps = np.abs(own_noise[e[:, 0]] - own_noise[e[:, 1]])
+    seam, noise_steps, _ = seams(r, big_terrain, d, own_noise)
     assert np.percentile(seam, 99) > 4 * np.percentile(noise_steps, 99)
 
 
@@ -146,19 +172,21 @@ def test_raster_map_overlap_matches_untiled(client, big_terrain):
     transform = (0.0, 1.0, 0.0, 0.0, 0.0, -1.0)
     request = tiles.FilterRequest(preset="terrain-bms", signal="_ELEVATION", levels=3, options={"passes": 3})
     whole = geoshift.grid_terrain(z, transform)
-    unit = tiles._raster_stats(z, 6)
-    unit = unit[0] / unit[1]
+    total, count, bounds = tiles._raster_stats(z, 3)
+    unit = total / count
     ref = request.run(whole, unit).signal["_ELEVATION"]
     noise = geoshift.mean_shift(whole, "_ELEVATION", preset="terrain-bms", levels=3, passes=3, unit=unit,
                                 chart_cell=0.5).signal["_ELEVATION"] - ref
-    out, reach, used = tiles.filter_raster_tiled(z, transform, request, 128, client, unit=unit)
+    out, reach, used = tiles.filter_raster_tiled(z, transform, request, 128, client)
+    assert used == unit
     assert out.shape == z.shape and np.isnan(out[100:104, 30:40]).all()
     d = np.abs(out[~np.isnan(z)] - ref)
     n = np.abs(noise)
     report(f"raster map_overlap (terrain-bms, 3 passes, 3 levels, on _ELEVATION, 257x257 cells, chunks 128, halo "
            f"{int(np.ceil(reach.halo))} cells): max {d.max():.3g} m, p99 {np.percentile(d, 99):.3g} m; own noise "
            f"max {n.max():.3g}, p99 {np.percentile(n, 99):.3g}")
-    assert np.percentile(d, 99) <= 2 * np.percentile(n, 99)
+    # the blocks analyse in the whole raster's wavelet order: as close as the meshes' tiles
+    assert np.percentile(d, 99) <= np.percentile(n, 99) and (d > 1).mean() <= (n > 1).mean()
 
 
 def test_batch_of_files_one_task_a_file(client, tmp_path, terrain):

@@ -145,3 +145,21 @@ test('with the threaded module, the shared flag cancels too and results match th
     threaded.close();
   }
 });
+
+test('read: the core\'s counts for a good file, the CLI\'s message (kind input) for a damaged one', () => {
+  const { engine, messages } = engineWith();
+  const obj = 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n';
+  const good = { type: 'read', id: 1, fileName: 'quad.obj', bytes: new TextEncoder().encode(obj) };
+  assert.ok(isRequest(good));
+  engine.handle(good);
+  const bad = { type: 'read', id: 2, fileName: 'quad.obj', bytes: new TextEncoder().encode(obj.replace('f 2 4 3', 'f 2 5 3')) };
+  engine.handle(bad);
+  assert.ok(!isRequest({ type: 'read', id: 3, fileName: 'x.obj', bytes: [1, 2] }), 'bytes must be a Uint8Array');
+  const [r1, r2] = messages();
+  assert.equal(r1.type, 'result');
+  assert.equal(r1.kind, 'read');
+  assert.equal(r1.info.vertices, 4);
+  assert.equal(r1.info.triangles, 2);
+  assert.deepEqual(r1.info.parts.map((p) => p.label), ['quad.obj']);
+  assert.deepEqual(r2, { type: 'error', id: 2, kind: 'input', message: "quad.obj: face 2 (group '') references vertex 5 but the file has 4 vertices" });
+});

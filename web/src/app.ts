@@ -1,6 +1,10 @@
 // Opening files: load, show, report. A failed load leaves the previous model on screen; when two
 // loads overlap (a second file dropped while the first still parses), only the last one is shown.
+// The user's own files are read by the core first (core-check.ts), so a damaged file gets the CLI's
+// message; the files the app ships (the sample, the gallery) are not, so that the first view does
+// not wait for the WebAssembly module.
 
+import { checkWithCore, CoreReadError, type CoreReader } from './core-check';
 import { describeLoadFailure, loadModel, LoadError, type LoadedModel, type MeshCounts } from './loaders';
 import type { StatusLine } from './status';
 import type { Viewer } from './viewer';
@@ -21,6 +25,8 @@ export class App {
     private readonly viewMode: ViewModeControl,
     /** Told about every model put on screen (the filter panel takes it from there). */
     private readonly onShown: (model: LoadedModel, fileName: string) => void = () => undefined,
+    /** The core's readers in the worker; without it, three's loaders and the app's checks decide. */
+    private readonly core: CoreReader | null = null,
   ) {}
 
   /** Stats of the model on screen, or null before the first successful load. */
@@ -29,7 +35,7 @@ export class App {
   }
 
   openFile(file: File): Promise<void> {
-    return this.open(file.name, () => file.arrayBuffer());
+    return this.open(file.name, () => file.arrayBuffer(), true);
   }
 
   /** Fetches a file that ships with the app (the startup sample). */
@@ -56,12 +62,15 @@ export class App {
     await this.viewer.nextFrame();
   }
 
-  private open(fileName: string, read: () => Promise<ArrayBuffer>): Promise<void> {
+  private open(fileName: string, read: () => Promise<ArrayBuffer>, checkWithTheCore = false): Promise<void> {
     const ticket = ++this.latest;
     this.status.loading(fileName);
     const run = async (): Promise<void> => {
       try {
-        const model = await loadModel(fileName, await read());
+        const data = await read();
+        if (checkWithTheCore && this.core) await checkWithCore(this.core, fileName, data);
+        if (ticket !== this.latest) return;
+        const model = await loadModel(fileName, data);
         if (ticket !== this.latest) return;
         this.viewMode.modelChanged(model.hasVertexColors);
         this.viewer.setModel(model);
@@ -72,7 +81,9 @@ export class App {
         if (ticket !== this.latest) return;
         console.error(`geoshift: could not read ${fileName}`, error);
         const still = this.shown ? ` Still showing ${this.shown.file}.` : '';
-        this.status.error(`Could not read ${fileName}: ${describeLoadFailure(error)}.${still}`);
+        // The core's message names the file itself, as the CLI prints it.
+        const what = error instanceof CoreReadError ? error.message : `${fileName}: ${describeLoadFailure(error)}`;
+        this.status.error(`Could not read ${what}.${still}`);
       }
     };
     const done = run();

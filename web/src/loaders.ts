@@ -180,8 +180,9 @@ export function describeLoadFailure(error: unknown): string {
   if (error instanceof RangeError && /alloc|memory|Invalid array length|Invalid typed array length/i.test(error.message)) {
     return 'it is too large for the memory this browser tab may use (try a smaller file, or the command-line tool)';
   }
-  const message = error instanceof Error ? error.message : String(error);
-  // three's loaders prefix messages with their class name, which means nothing to users.
-  const plain = message.replace(/^THREE\.\w+:\s*/, '').trim();
-  return `the file is damaged or not in the format its extension says (${plain || 'unknown error'})`;
+  // Anything else is an exception of three's loaders or of the browser, whose text ("Cannot read
+  // properties of undefined ...") means nothing to users: it goes to the console, the page says
+  // what failed.
+  console.error('geoshift: the loader failed', error);
+  return 'the file is damaged or not in the format its extension says (the loader stopped on it; details in the browser console)';
 }

@@ -36,6 +36,15 @@ function requestedBuild(): 'auto' | 'single' | 'threaded' {
   return build === 'single' || build === 'threaded' ? build : 'auto';
 }
 
+/**
+ * ?heap=MB: the most the single-threaded build's WebAssembly heap may grow to (at least 64), as on a
+ * device with less memory; default: wasm32's 4 GB.
+ */
+function requestedHeapMB(): number | undefined {
+  const heap = Number(new URLSearchParams(location.search).get('heap'));
+  return Number.isFinite(heap) && heap > 0 ? heap : undefined;
+}
+
 function start(): Promise<void> {
   const status = new StatusLine(element('status', HTMLElement));
   let viewer: Viewer;
@@ -51,7 +60,7 @@ function start(): Promise<void> {
   const viewMode = new ViewModeControl(element('view-mode', HTMLSelectElement), viewer, (mode) => scalars.setActive(mode === 'scalar'));
 
   const wasmBase = new URL(`${import.meta.env.BASE_URL}wasm/`, location.href).href;
-  const client = new WorkerClient(wasmBase, requestedBuild());
+  const client = new WorkerClient(wasmBase, requestedBuild(), requestedHeapMB());
   const panel = new ParameterPanel(
     element('preset-select', HTMLSelectElement),
     element('preset-summary', HTMLElement),
@@ -90,10 +99,16 @@ function start(): Promise<void> {
     enabled: element('live-preview', HTMLInputElement),
   });
   const upAxis = new UpAxisControl(element('up-axis-select', HTMLSelectElement), (axis) => viewer.setUp(axisVector(axis)));
-  const app = new App(viewer, status, viewMode, (model, fileName) => {
-    upAxis.modelChanged(model.meshes, fileName);
-    filters.setModel(model, fileName);
-  });
+  const app = new App(
+    viewer,
+    status,
+    viewMode,
+    (model, fileName) => {
+      upAxis.modelChanged(model.meshes, fileName);
+      filters.setModel(model, fileName);
+    },
+    client,
+  );
   const snapshot = () =>
     snapshotPng(viewer, {
       viewport: element('viewport', HTMLElement),

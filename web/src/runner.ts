@@ -134,8 +134,12 @@ export function describeRunFailure(error: unknown): string {
       case 'input':
         return `The filter could not run: ${error.message}. The mesh is unchanged.`;
       case 'internal':
-        return `Something went wrong inside the filter (${error.message}). The mesh is unchanged; reloading the page may help.`;
+        // An internal error's text (a C++ or JS exception) means nothing to users: it goes to the
+        // console, the page says what failed.
+        console.error('geoshift: internal error in a filter run', error);
+        return 'Something went wrong inside the filter (an internal error; details in the browser console). The mesh is unchanged; reloading the page may help.';
     }
   }
-  return `Something went wrong (${error instanceof Error ? error.message : String(error)}). The mesh is unchanged.`;
+  console.error('geoshift: a filter run failed', error);
+  return 'Something went wrong while running the filter (details in the browser console). The mesh is unchanged.';
 }

@@ -74,6 +74,10 @@ struct DenoiseOptions {
   int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
   int vertexIterations = 10;
   std::uint64_t seed = 1;   // of the risk estimate's random probe
+  // The risk estimate measures each vertex's error along a normal: that of a copy of the input
+  // smoothed by this many Taubin steps (0: the noisy input's own normals, which point off by
+  // about the noise's angle). docs/denoising.md#the-default-pipeline has the figures.
+  int riskNormalSmoothing = 3;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
 
   // --- Paper preset ---

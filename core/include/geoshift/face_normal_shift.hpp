@@ -4,6 +4,8 @@
 // support surface (faces reached across edges within r, or a log map from its centroid) and
 // reused by every pass.
 #include <cstddef>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "geoshift/geodesic.hpp"
@@ -22,17 +24,34 @@ struct FaceNeighborhoodOptions {
   ParallelOptions parallel;
 };
 
-// For face f, the faces g whose centroid lies within `radius` of f's centroid (f itself first), and
-// the spatial kernel exp(-d²/2h_s²) of their distance d. Compressed rows.
+// For face f, the faces g whose centroid lies within `radius` of f's centroid (f itself first, the
+// others in increasing order), with the spatial kernel exp(-d²/2h_s²) of their distance d. Rows are
+// stored in blocks of kBlock faces, each block in one exactly sized array, so the table never holds
+// a second copy of itself. With straight distances a row holds only its faces: the weights are
+// recomputed from the support's centroids when used, which halves the table
+// (docs/denoising.md#speed-and-memory); geodesic distances cannot be, and are stored.
 struct FaceNeighborhoods {
-  std::vector<int> start;          // faceCount + 1 offsets into face / spatialWeight
-  std::vector<int> face;
-  std::vector<float> spatialWeight;
-  double radius = 0;               // absolute (the support's units)
-  double spatialBandwidth = 0;     // absolute
-  size_t bytes() const {
-    return start.capacity() * sizeof(int) + face.capacity() * sizeof(int) + spatialWeight.capacity() * sizeof(float);
+  static constexpr int kBlock = 4096;
+  std::vector<std::vector<int>> faceBlocks;      // the rows of faces [b·kBlock, (b+1)·kBlock)
+  std::vector<std::vector<float>> weightBlocks;  // geodesic: the rows' spatial weights; else empty
+  std::vector<Vec3> centroids;                   // straight: the support's face centroids; else empty
+  std::vector<int> start;                        // face -> offset of its row in its block; faceCount + 1
+  double radius = 0;                             // absolute (the support's units)
+  double spatialBandwidth = 0;                   // absolute
+
+  int faceCount() const { return start.empty() ? 0 : static_cast<int>(start.size()) - 1; }
+  // Offsets [begin, end) of f's row in faceBlocks[f / kBlock] (and weightBlocks).
+  std::pair<int, int> span(int f) const {
+    const int end = (f + 1) % kBlock == 0 ? static_cast<int>(faceBlocks[f / kBlock].size()) : start[f + 1];
+    return {start[f], end};
   }
+  std::span<const int> row(int f) const {
+    const auto [b, e] = span(f);
+    return {faceBlocks[f / kBlock].data() + b, static_cast<size_t>(e - b)};
+  }
+  // The spatial weight of the j-th face of f's row, as the shift uses it.
+  float spatialWeight(int f, int j) const;
+  size_t bytes() const;
 };
 
 // Neighbourhoods on `support` (it must have the faces of the meshes the normals come from).

@@ -25,8 +25,9 @@ struct VertexUpdateOptions {
   FlipGuard flipGuard = FlipGuard::Input;
   // What "the input" of the guard is: empty, the mesh's face normals at the call; else one normal
   // per face (a denoiser running several passes gives the normals of its own input, so that no
-  // face ends up flipped against the mesh it was given, however many passes).
-  std::vector<Vec3> referenceNormals;
+  // face ends up flipped against the mesh it was given, however many passes). Single precision:
+  // only the sign of a dot product with them is used, and a denoiser keeps two sets for a whole run.
+  std::vector<Eigen::Vector3f> referenceNormals;
   // Threads of the per-face and per-vertex loops; results do not depend on them.
   ParallelOptions parallel;
 };
@@ -53,10 +54,15 @@ struct VertexUpdateResult {
 // face the noise folded over may turn back; every face then ends facing its input or its target
 // normal. Cost: the guard re-checks only the faces around shortened steps.
 //
+// The reference normals of the guard, in the single precision VertexUpdateOptions keeps them in.
+std::vector<Eigen::Vector3f> referenceNormalsOf(const Mesh& mesh);
+
 // Preconditions: targetNormals has one entry per face. Entries are normalised here; a zero vector
 // means the face pulls on nothing. Throws InputError when the count is wrong, an entry is not
 // finite (naming the face) or iterations < 0. Throws Cancelled through `progress`.
-VertexUpdateResult updateVertices(const Mesh& mesh, const std::vector<Vec3>& targetNormals,
+// targetNormals is taken by value: a caller done with its targets moves them in and they are
+// normalised in place.
+VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNormals,
                                   const VertexUpdateOptions& options = {},
                                   const Progress& progress = {});
 

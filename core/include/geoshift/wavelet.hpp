@@ -12,6 +12,7 @@
 // Σ A f invariant). Boundary vertices: see WaveletOptions::boundaryAngle. The fine mesh comes back
 // with the input's connectivity and vertex order exactly; α = 1 on every level reconstructs the input
 // (to round-off), α = 0 drops the details, α > 1 enhances them.
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -50,6 +51,14 @@ struct WaveletOptions {
   double maxNormalChange = 75.0;
   // Keep every level's mesh (for inspection and tests; costs memory).
   bool keepLevelMeshes = false;
+  // The candidate order of a piece of a larger mesh (a tile), so that inside it the piece removes
+  // the vertices the whole's analysis removes (docs/tiles.md#the-wavelet-order). Candidates go in
+  // blocks of consecutive whole indices, cost bands, then index: wholeIndex gives each vertex's index
+  // in the whole mesh, increasing with its index here (empty: its own index); costBounds the whole's
+  // band bounds of each level (its WaveletLevel::costBounds; empty, and levels past those given:
+  // quantiles of this mesh's own costs).
+  std::vector<std::int64_t> wholeIndex;
+  std::vector<std::vector<double>> costBounds;
 };
 
 // One analysis step: the vertices it removed (ids of the input mesh), each with its collapse target,
@@ -63,6 +72,7 @@ struct WaveletLevel {
   std::vector<double> predict;  // p_oe, summing to 1 per odd vertex
   std::vector<double> update;   // u_eo (minimum-norm, Σ_e A'_e u_eo = A_o)
   std::vector<double> detail;   // odd.size() rows of Multiresolution::channelCount() values
+  std::vector<double> costBounds;  // upper bounds of the cost bands its candidate order used
 };
 
 // A level's mesh as kept with WaveletOptions::keepLevelMeshes.
@@ -99,7 +109,8 @@ struct Multiresolution {
 // Lifting analysis of the mesh's positions and all `signals` (per mesh vertex).
 // Preconditions: signals.vertexCount() == mesh.vertexCount() (an empty set is fine).
 // Throws InputError when options.levels < 0, options.maxNormalChange is not in (0, 90), the signal
-// count does not match (naming the attribute), or a value is not finite (naming attribute and vertex).
+// count does not match (naming the attribute), a value is not finite (naming attribute and vertex), or
+// wholeIndex / costBounds are malformed (wrong count, not increasing, not finite).
 // Throws Cancelled through `progress`.
 Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const WaveletOptions& options = {},
                         const Progress& progress = {});

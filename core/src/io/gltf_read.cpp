@@ -248,13 +248,31 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
   const std::string bytes = readWholeFile(path);
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
   if (binary) {
+    // GLB header: magic, version, total length (tinygltf reads version 1 files and reports a short
+    // file only as "Invalid glTF binary").
+    uint32_t header[3] = {};
+    std::memcpy(header, bytes.data(), std::min<size_t>(bytes.size(), sizeof header));
+    if (bytes.size() >= 8 && header[1] != 2)
+      fail(path, "cannot read glTF: GLB version " + std::to_string(header[1]) + "; geoshift reads glTF 2.0 (version 2)");
+    if (bytes.size() >= 12 && header[2] > bytes.size())
+      fail(path, "cannot read glTF: the GLB header says " + std::to_string(header[2]) + " bytes, the file has " +
+                     std::to_string(bytes.size()) + " (truncated file)");
     // GLB: JSON chunk length at byte 12, chunk data at byte 20.
     if (bytes.size() >= 20) {
       uint32_t len = 0;
       std::memcpy(&len, bytes.data() + 12, 4);
       if (20 + static_cast<size_t>(len) <= bytes.size()) checkJson(path, bytes.substr(20, len));
+      // tinygltf refuses an empty BIN chunk as "must have 4 bytes or more, but got 4".
+      uint32_t bin[2] = {};
+      const size_t binStart = 20 + static_cast<size_t>(len);
+      if (binStart + 8 <= bytes.size()) std::memcpy(bin, bytes.data() + binStart, 8);
+      if (bin[1] == 0x004e4942 && bin[0] == 0)
+        fail(path, "cannot read glTF: the GLB has an empty BIN chunk (0 bytes); a GLB without binary data has no BIN chunk");
     }
   } else {
+    const size_t first = bytes.find_first_not_of(" \t\r\n");
+    if (format == FileFormat::Glb && (first == std::string::npos || bytes[first] != '{'))
+      fail(path, "not a GLB file: it does not start with the 'glTF' signature (nor is it glTF JSON)");
     checkJson(path, bytes);
   }
 

@@ -2,7 +2,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -21,19 +25,76 @@ void fail(const std::string& path, const std::string& what) {
 
 bool isGltfFamily(FileFormat f) { return f == FileFormat::Gltf || f == FileFormat::Glb; }
 
+#ifndef __EMSCRIPTEN__
 std::string formatNumber(double v) {
   char buf[64];
   auto r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
 }
 
+bool parseDouble(const char* first, const char* last, double& value) {
+  const auto r = std::from_chars(first, last, value);
+  return r.ec == std::errc() && r.ptr == last;
+}
+#else
+// As std::to_chars(first, last, v): the fewest significant digits that read back as v, written
+// fixed or in printf's %e style, whichever is shorter (fixed on a tie).
+std::string formatNumber(double v) {
+  if (std::isnan(v)) return std::signbit(v) ? "-nan" : "nan";
+  if (std::isinf(v)) return v < 0 ? "-inf" : "inf";
+  char sci[64];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(sci, sizeof sci, "%.*e", digits - 1, v);
+    if (std::strtod(sci, nullptr) == v) break;
+  }
+  // sci = [-]d[.ddd]e±XX: its digits and exponent give the fixed form.
+  const std::string s(sci);
+  const size_t e = s.find('e');
+  const bool negative = s[0] == '-';
+  std::string digits;
+  for (size_t i = negative ? 1 : 0; i < e; ++i)
+    if (s[i] != '.') digits += s[i];
+  const int exponent = std::atoi(s.c_str() + e + 1);
+  const int n = static_cast<int>(digits.size());
+  std::string fixed = negative ? "-" : "";
+  if (exponent >= n - 1) {
+    // An integer: printf's %f writes its exact digits (beyond 17 they are not all zeros).
+    char whole[400];
+    std::snprintf(whole, sizeof whole, "%.0f", v);
+    fixed = whole;
+  } else if (exponent >= 0) {
+    fixed += digits.substr(0, static_cast<size_t>(exponent) + 1) + "." + digits.substr(static_cast<size_t>(exponent) + 1);
+  } else {
+    fixed += "0." + std::string(static_cast<size_t>(-exponent - 1), '0') + digits;
+  }
+  return fixed.size() <= s.size() ? fixed : s;
+}
+
+bool parseDouble(const char* first, const char* last, double& value) {
+  // from_chars' grammar: no leading space or '+', no hexadecimal prefix.
+  if (first == last || *first == '+' || std::isspace(static_cast<unsigned char>(*first))) return false;
+  const std::string text(first, last);
+  if (text.find_first_of("xX") != std::string::npos) return false;
+  errno = 0;
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && errno != ERANGE;
+}
+#endif
+
 std::string readWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open the file (missing or unreadable)");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) fail(path, "read error");
-  return ss.str();
+  // One read of the whole size: copying through `ss << in.rdbuf()` goes character by character in
+  // libc++ (the wasm build), several seconds for a 36 MB file.
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) fail(path, "read error (cannot tell the file's size)");
+  in.seekg(0, std::ios::beg);
+  std::string bytes(static_cast<size_t>(size), '\0');
+  in.read(bytes.data(), size);
+  if (in.gcount() != size) fail(path, "read error");
+  return bytes;
 }
 
 void AtomicFileSet::add(const std::string& path, std::string bytes) {
@@ -136,11 +197,33 @@ FileFormat formatFromPath(const std::string& path) {
                      "'; geoshift reads and writes .gltf, .glb, .obj, .off, .ply and .stl");
 }
 
+namespace {
+
+// A file whose first bytes are another format's signature was misnamed: say so rather than let
+// the extension's reader report whatever the other format's bytes look like to it.
+void checkSignature(const std::string& path, FileFormat format) {
+  std::ifstream in(path, std::ios::binary);
+  char head[5] = {};
+  in.read(head, sizeof head);
+  const std::string start(head, static_cast<size_t>(in.gcount()));
+  const std::string ext = fs::path(path).extension().string();
+  if (start.size() >= 4 && start.compare(0, 4, "glTF") == 0 && !io::isGltfFamily(format))
+    io::fail(path, "the file is a binary glTF (it starts with 'glTF'), not a " + ext +
+                       " file as its name says; rename it to .glb");
+  if ((start.compare(0, 4, "ply\n") == 0 || start.compare(0, 5, "ply\r\n") == 0) && format != FileFormat::Ply)
+    io::fail(path, "the file is a PLY file (its first line is 'ply'), not a " + ext +
+                       " file as its name says; rename it to .ply");
+}
+
+}  // namespace
+
 Document readDocument(const std::string& path, const ReadOptions& options) {
   const FileFormat format = formatFromPath(path);
   std::error_code ec;
   if (!fs::exists(path, ec)) io::fail(path, "file not found");
   if (fs::is_directory(path, ec)) io::fail(path, "is a directory, not a mesh file");
+  if (fs::file_size(path, ec) == 0 && !ec) io::fail(path, "the file is empty (0 bytes)");
+  checkSignature(path, format);
   switch (format) {
     case FileFormat::Gltf:
     case FileFormat::Glb: return io::readGltf(path, format, options);

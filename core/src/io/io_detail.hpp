@@ -57,6 +57,11 @@ bool isGltfFamily(FileFormat f);
 // Shortest text that reads back as exactly the same double.
 std::string formatNumber(double v);
 
+// std::from_chars for a double (the whole of [first, last), no leading space or '+'); false when
+// it is not a number or out of range. Emscripten 3.1.6's libc++ has no floating-point from_chars
+// or to_chars, so the wasm build (the web app's readers) goes through strtod / snprintf instead.
+bool parseDouble(const char* first, const char* last, double& value);
+
 // Files written together: each goes to a temporary file beside its target, and only when all of
 // them are complete are they renamed into place. On any failure every temporary is removed.
 class AtomicFileSet {

@@ -69,6 +69,9 @@ Document readObj(const std::string& path, const ReadOptions& options) {
   source->format = FileFormat::Obj;
   ObjSource& src = source->obj;
   src.text = readWholeFile(path);
+  // NUL never occurs in OBJ text; tinyobjloader would read binary data as lines of nothing.
+  if (src.text.find('\0') != std::string::npos)
+    fail(path, "not a text OBJ file: it holds NUL bytes (binary data)");
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
@@ -127,7 +130,12 @@ Document readObj(const std::string& path, const ReadOptions& options) {
       Face f{};
       for (size_t k = 0; k < fv; ++k) {
         const auto& idx = shape.mesh.indices[offset + k];
-        if (idx.vertex_index < 0 || static_cast<size_t>(idx.vertex_index) >= nv)
+        // tinyobjloader turns a relative index (-k: the k-th vertex back) into an absolute one;
+        // a negative result means it reached back past the first vertex.
+        if (idx.vertex_index < 0)
+          fail(path, "face " + std::to_string(faceNo) + " (group '" + shape.name +
+                         "') has a relative vertex index that reaches back past the first vertex");
+        if (static_cast<size_t>(idx.vertex_index) >= nv)
           fail(path, "face " + std::to_string(faceNo) + " (group '" + shape.name + "') references vertex " +
                          std::to_string(idx.vertex_index + 1) + " but the file has " + std::to_string(nv) +
                          " vertices");

@@ -116,7 +116,7 @@ Header parseHeader(const std::string& path, const std::string& b) {
       const auto r = std::from_chars(count.data(), count.data() + count.size(), n);
       if (e.name.empty() || count.empty() || r.ec != std::errc() || r.ptr != count.data() + count.size())
         io::fail(path, at + ": malformed element line '" + line + "' (expected: element NAME COUNT)");
-      e.count = static_cast<size_t>(n);
+      e.count = n;
       h.elements.push_back(e);
     } else if (word == "property") {
       if (h.elements.empty()) io::fail(path, at + ": property before any element");
@@ -162,7 +162,7 @@ Header parseHeader(const std::string& path, const std::string& b) {
       io::fail(path, "element '" + e.name + "' declares " + std::to_string(e.count) +
                          " records, more than the remaining " + std::to_string(left) +
                          " bytes of the file can hold (truncated file or wrong count)");
-    left -= std::min(left, e.count * minRecord);
+    left -= std::min(left, static_cast<size_t>(e.count) * minRecord);  // fits: checked above
   }
   return h;
 }
@@ -172,11 +172,13 @@ Records::Records(const std::string& path, const std::string& bytes, const Header
 
 void Records::fail(const std::string& what) const {
   const std::string file = encoding_ == Encoding::Ascii ? path_ + ":" + std::to_string(line_) : path_;
-  io::fail(file, where_ + ": " + what);
+  const std::string where = element_ ? element_->name + " " + std::to_string(index_) : std::string();
+  io::fail(file, where + ": " + what);
 }
 
 void Records::begin(const Element& element, size_t index) {
-  where_ = element.name + " " + std::to_string(index);
+  element_ = &element;
+  index_ = index;
   if (encoding_ != Encoding::Ascii) return;
   tokens_.clear();
   next_ = 0;
@@ -204,9 +206,9 @@ void Records::end() {
     fail(std::to_string(tokens_.size() - next_) + " more value(s) on the line than the header declares");
 }
 
-double Records::binary(Type t, const std::string& what) {
+double Records::binary(Type t, const char* what, const std::string& name) {
   const size_t n = sizeOf(t);
-  if (b_.size() - pos_ < n) fail("truncated: the file ends inside " + what);
+  if (b_.size() - pos_ < n) fail(std::string("truncated: the file ends inside ") + what + " '" + name + "'");
   unsigned char raw[8];
   std::memcpy(raw, b_.data() + pos_, n);
   if (encoding_ == Encoding::BinaryBigEndian) std::reverse(raw, raw + n);
@@ -224,33 +226,31 @@ double Records::binary(Type t, const std::string& what) {
   return 0;
 }
 
-double Records::text(Type t, const std::string& what) {
-  if (next_ >= tokens_.size()) fail("the line ends before " + what);
+double Records::text(Type t, const char* what, const std::string& name) {
+  if (next_ >= tokens_.size()) fail(std::string("the line ends before ") + what + " '" + name + "'");
   const auto [s, e] = tokens_[next_++];
   const char* first = b_.data() + s;
   const char* last = b_.data() + e;
-  const std::string tok(first, last);
+  const auto described = [&] { return std::string(" (") + what + " '" + name + "')"; };
   if (isInteger(t)) {
     long long v = 0;
     const auto r = std::from_chars(first, last, v);
     if (r.ec != std::errc() || r.ptr != last || !inRange(static_cast<double>(v), t))
-      fail("'" + tok + "' is not a valid " + typeName(t) + " (" + what + ")");
+      fail("'" + std::string(first, last) + "' is not a valid " + typeName(t) + described());
     return static_cast<double>(v);
   }
   double v = 0;
-  const auto r = std::from_chars(first, last, v);
-  if (r.ec != std::errc() || r.ptr != last) fail("'" + tok + "' is not a number (" + what + ")");
+  if (!io::parseDouble(first, last, v)) fail("'" + std::string(first, last) + "' is not a number" + described());
   return v;
 }
 
 double Records::scalar(const Property& p) {
-  const std::string what = "property '" + p.name + "'";
-  return encoding_ == Encoding::Ascii ? text(p.type, what) : binary(p.type, what);
+  return encoding_ == Encoding::Ascii ? text(p.type, "property", p.name) : binary(p.type, "property", p.name);
 }
 
 size_t Records::listLength(const Property& p) {
-  const std::string what = "the length of list '" + p.name + "'";
-  const double n = encoding_ == Encoding::Ascii ? text(p.countType, what) : binary(p.countType, what);
+  const char* what = "the length of list";
+  const double n = encoding_ == Encoding::Ascii ? text(p.countType, what, p.name) : binary(p.countType, what, p.name);
   if (n < 0) fail("list '" + p.name + "' has a negative length " + io::formatNumber(n));
   const size_t len = static_cast<size_t>(n);
   const size_t avail = encoding_ == Encoding::Ascii ? tokens_.size() - next_ : (b_.size() - pos_) / sizeOf(p.type);
@@ -261,8 +261,8 @@ size_t Records::listLength(const Property& p) {
 }
 
 double Records::listItem(const Property& p) {
-  const std::string what = "an item of list '" + p.name + "'";
-  return encoding_ == Encoding::Ascii ? text(p.type, what) : binary(p.type, what);
+  const char* what = "an item of list";
+  return encoding_ == Encoding::Ascii ? text(p.type, what, p.name) : binary(p.type, what, p.name);
 }
 
 void Records::skip(const Property& p) {

@@ -25,7 +25,9 @@ struct Property {
 
 struct Element {
   std::string name;
-  size_t count = 0;
+  // 64 bits in every build: a declared count must not wrap in wasm32's 32-bit size_t before it is
+  // checked against the file's size.
+  std::uint64_t count = 0;
   std::vector<Property> props;
   int find(const std::string& property) const;  // index or -1
 };
@@ -66,15 +68,18 @@ class Records {
   bool trailingData() const;
 
  private:
-  double binary(Type t, const std::string& what);
-  double text(Type t, const std::string& what);
+  // `what` and `name` describe the value for a message ("property" 'x'): composed only on failure,
+  // since a mesh has millions of values.
+  double binary(Type t, const char* what, const std::string& name);
+  double text(Type t, const char* what, const std::string& name);
 
   const std::string& path_;
   const std::string& b_;
   Encoding encoding_;
   size_t pos_ = 0;
   size_t line_ = 0;  // ascii: current line number
-  std::string where_;
+  const Element* element_ = nullptr;  // the record being read, for messages
+  size_t index_ = 0;
   // ascii: the current record's values as [begin, end) offsets into b_
   std::vector<std::pair<size_t, size_t>> tokens_;
   size_t next_ = 0;

@@ -103,8 +103,7 @@ class Words {
   double number(const std::string& what) {
     const std::string w = next(what);
     double v = 0;
-    const auto r = std::from_chars(w.data(), w.data() + w.size(), v);
-    if (r.ec != std::errc() || r.ptr != w.data() + w.size()) err("'" + w.substr(0, 40) + "' is not a number (" + what + ")");
+    if (!io::parseDouble(w.data(), w.data() + w.size(), v)) err("'" + w.substr(0, 40) + "' is not a number (" + what + ")");
     return v;
   }
   void restOfLine() {

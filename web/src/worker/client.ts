@@ -7,7 +7,7 @@
 // meshes (it loads the current geometry before each run), so a new worker loses nothing.
 
 import type { CorePreset } from '../../../wasm/geoshift';
-import type { ErrorKind, LoadInfo, MeshArrays, Request, Response, RunOutput } from './protocol';
+import type { ErrorKind, LoadInfo, MeshArrays, ReadInfo, Request, Response, RunOutput } from './protocol';
 import { isResponse, transferables } from './protocol';
 import { GeoshiftError } from './wasm-api';
 
@@ -50,6 +50,8 @@ export class WorkerClient {
   constructor(
     private readonly wasmBase: string,
     private readonly build: Build = 'auto',
+    /** The single-threaded build's heap limit in MB (?heap=, main.ts); default: wasm32's 4 GB. */
+    private readonly heapMB?: number,
   ) {
     this.cancelFlag = typeof SharedArrayBuffer !== 'undefined' && crossOriginIsolated ? new Int32Array(new SharedArrayBuffer(4)) : null;
     this.spawn();
@@ -58,6 +60,24 @@ export class WorkerClient {
   /** Resolves with what the worker runs once its module is ready; rejects if it cannot start. */
   ready(): Promise<WorkerInfo> {
     return this.started;
+  }
+
+  /**
+   * Reads a file with the core's readers (a copy of the bytes is transferred; the caller keeps its
+   * own). Rejects with a GeoshiftError of kind 'input' (the CLI's message) or 'memory'.
+   */
+  async read(fileName: string, bytes: ArrayBuffer): Promise<ReadInfo> {
+    const copy = new Uint8Array(bytes.slice(0));
+    const response = await this.request({ type: 'read', fileName, bytes: copy }, () => [copy.buffer]);
+    return (response as Extract<Response, { kind: 'read' }>).info;
+  }
+
+  /**
+   * Replaces the worker by a fresh one (its heap, grown by a file that did not fit, is released);
+   * whatever was pending fails as cancelled. The page reloads meshes before each run.
+   */
+  restart(): void {
+    this.respawn();
   }
 
   /** Copies the mesh into the worker (copies of the arrays are transferred; the caller keeps its own). */
@@ -147,6 +167,7 @@ export class WorkerClient {
       type: 'init',
       wasmBase: this.wasmBase,
       build: this.build,
+      ...(this.heapMB ? { heapMB: this.heapMB } : {}),
       ...(this.cancelFlag ? { cancelFlag: this.cancelFlag.buffer } : {}),
     });
   }

@@ -43,6 +43,9 @@ export class Engine {
 
   private dispatch(request: Request): void {
     switch (request.type) {
+      case 'read':
+        this.post({ type: 'result', id: request.id, kind: 'read', info: this.api.readFile(request.fileName, request.bytes) }, []);
+        return;
       case 'load': {
         this.forget(request.meshId);
         const { handle, info } = this.api.load(request);

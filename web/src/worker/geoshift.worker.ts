@@ -14,7 +14,16 @@ interface Init {
   /** 'auto' follows crossOriginIsolated; the page forces 'single' for comparisons and tests. */
   build: 'auto' | 'single' | 'threaded';
   cancelFlag?: SharedArrayBuffer;
+  /**
+   * The single-threaded build's heap limit in MB (at least 64, its initial size): the module gets a
+   * WebAssembly.Memory that can grow to this much and no more, so that a file too large for it
+   * fails as it would on a device with less memory. The threaded build keeps wasm32's 4 GB.
+   */
+  heapMB?: number;
 }
+
+const PAGE = 65536;
+const INITIAL_HEAP_MB = 64; // -sINITIAL_MEMORY in wasm/CMakeLists.txt
 
 // The app's tsconfig has the DOM library, not WebWorker; this is the part of the worker scope used.
 interface WorkerScope {
@@ -43,7 +52,13 @@ async function start(init: Init): Promise<void> {
   try {
     const factory = (await import(/* @vite-ignore */ url)).default as GeoshiftFactory;
     // The pthread workers load the module script themselves; they need its URL, not this file's.
-    const module = await factory(threaded ? { mainScriptUrlOrBlob: url } : {});
+    const heapMB = init.heapMB ? Math.max(INITIAL_HEAP_MB, Math.floor(init.heapMB)) : 0;
+    const options = threaded
+      ? { mainScriptUrlOrBlob: url }
+      : heapMB
+        ? { wasmMemory: new WebAssembly.Memory({ initial: (INITIAL_HEAP_MB << 20) / PAGE, maximum: (heapMB << 20) / PAGE }) }
+        : {};
+    const module = await factory(options);
     const api = new GeoshiftApi(module);
     const flag = threaded && init.cancelFlag ? new Int32Array(init.cancelFlag) : undefined;
     engine = new Engine(api, post, flag ? { cancelFlag: flag } : {});

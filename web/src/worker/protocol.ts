@@ -2,7 +2,7 @@
 // answers it with exactly one `result` or `error`, after any number of `progress` messages.
 // Typed arrays travel as transferred buffers in both directions, never structured-cloned.
 
-import type { BuildReport, CorePreset, RunStats } from '../../../wasm/geoshift';
+import type { BuildReport, CorePreset, FilePart, RunStats } from '../../../wasm/geoshift';
 
 /** A mesh as the page holds it, in its own (three.js) vertex layout. */
 export interface MeshArrays {
@@ -16,6 +16,8 @@ export interface MeshArrays {
 }
 
 export type Request =
+  /** Reads a file's bytes with the core's readers (the CLI's): the page opens only what they accept. */
+  | { type: 'read'; id: number; fileName: string; bytes: Uint8Array }
   | ({ type: 'load'; id: number; meshId: string } & MeshArrays)
   | { type: 'run'; id: number; meshId: string; op: string; params: Record<string, unknown> }
   /** The op on a coarse level of the mesh (at most maxVertices vertices); the mesh is not changed. */
@@ -37,6 +39,14 @@ export interface LoadInfo {
   report: BuildReport;
 }
 
+/** What the core's readers found in a file (readFile without its ok flag). */
+export interface ReadInfo {
+  parts: FilePart[];
+  vertices: number;
+  triangles: number;
+  warnings: string[];
+}
+
 export interface RunOutput {
   positions?: Float32Array;
   colors?: Float32Array;
@@ -53,12 +63,13 @@ export type Response =
   /** The module could not start (no wasm, a missing file). */
   | { type: 'fatal'; message: string }
   | { type: 'progress'; id: number; fraction: number; stage: string }
+  | { type: 'result'; id: number; kind: 'read'; info: ReadInfo }
   | { type: 'result'; id: number; kind: 'load'; info: LoadInfo }
   | { type: 'result'; id: number; kind: 'run'; output: RunOutput }
   | { type: 'result'; id: number; kind: 'free' | 'cancel' }
   | { type: 'error'; id: number; kind: ErrorKind; message: string };
 
-const requestTypes = new Set(['load', 'run', 'preview', 'cancel', 'free']);
+const requestTypes = new Set(['read', 'load', 'run', 'preview', 'cancel', 'free']);
 const responseTypes = new Set(['ready', 'fatal', 'progress', 'result', 'error']);
 
 function hasType(value: unknown, types: Set<string>): value is { type: string } {
@@ -71,6 +82,8 @@ export function isRequest(value: unknown): value is Request {
   const v = value as Record<string, unknown>;
   if (typeof v.id !== 'number') return false;
   switch (v.type) {
+    case 'read':
+      return typeof v.fileName === 'string' && v.bytes instanceof Uint8Array;
     case 'load':
       return typeof v.meshId === 'string' && v.positions instanceof Float32Array && v.indices instanceof Uint32Array;
     case 'run':

@@ -2,7 +2,7 @@
 // { ok: false, error } values into GeoshiftError, so callers use try/catch like any JS API.
 
 import type { Failure, CorePreset, GeoshiftModule, RunFailure, RunResult } from '../../../wasm/geoshift';
-import type { ErrorKind, LoadInfo, MeshArrays, RunOutput } from './protocol';
+import type { ErrorKind, LoadInfo, MeshArrays, ReadInfo, RunOutput } from './protocol';
 
 export class GeoshiftError extends Error {
   override readonly name = 'GeoshiftError';
@@ -34,6 +34,15 @@ export class GeoshiftApi {
   /** The core's filter presets: the one source of their values. */
   presets(): CorePreset[] {
     return this.module.presets();
+  }
+
+  /** The core's readers on a file's bytes; a damaged file fails with the CLI's message (kind 'input'). */
+  readFile(fileName: string, bytes: Uint8Array): ReadInfo {
+    expect(bytes, Uint8Array, 'the file\'s bytes');
+    const r = this.module.readFile(fileName, bytes);
+    if (!r.ok) fail(r);
+    const { parts, vertices, triangles, warnings } = r;
+    return { parts, vertices, triangles, warnings };
   }
 
   /** Copies the mesh into the module; returns its handle and what welding found. */
