@@ -9,7 +9,8 @@
 #   ply_points                 fuzz/read_ply_points.cpp: readPlyPoints
 #   soup                       fuzz/build_soup.cpp: buildMesh / withTwins of arbitrary soups
 #   filter                     fuzz/filter_soup.cpp: a short mean shift and denoise of such a mesh
-# Each is seeded from fuzz/seeds/NAME with fuzz/dict/NAME.dict when there is one. The growing corpus
+# Each is seeded from fuzz/seeds/NAME (the mesh readers also from tests/data/damaged) with
+# fuzz/dict/NAME.dict when there is one. The growing corpus
 # stays in build/native-asan/fuzz/corpus/NAME; inputs that crash go to
 # build/native-asan/fuzz/artifacts/NAME/ and make the script fail. Prints the executions each reached.
 set -euo pipefail
@@ -55,6 +56,11 @@ for f in "${harnesses[@]}"; do
     glb) dict=fuzz/dict/gltf.dict ;;  # the JSON chunk's words
     ply_points) dict=fuzz/dict/ply.dict seeds=fuzz/seeds/ply ;;
     filter) seeds=fuzz/seeds/soup ;;
+  esac
+  # The damaged catalogue (tests/data/damaged, one file per way a file can be wrong) seeds the mesh
+  # readers too: copied into the corpus, which libFuzzer then minimises like any other input.
+  case "$f" in
+    gltf|glb|obj|off|ply|stl) cp tests/data/damaged/*."$f" "$corpus"/ 2>/dev/null || true ;;
   esac
   args=("$corpus")
   [ -d "$seeds" ] && args+=("$seeds")
