@@ -1,10 +1,12 @@
 // libFuzzer harness for one mesh reader: the input bytes become a file with the reader's extension
-// (GEOSHIFT_FUZZ_EXTENSION), read through readDocument as the CLI reads it, and every part is
-// built into a welded mesh (mesh building and repair on whatever soup the reader let through).
+// (GEOSHIFT_FUZZ_EXTENSION), read through readDocument as the CLI reads it; every part is built into
+// a welded mesh (mesh building and repair on whatever soup the reader let through), so is the
+// world-space soup of all instances, and the document is written back and read again.
 // A clean InputError is the expected outcome for most inputs; anything else the sanitizers or
 // libFuzzer catch (crash, leak, undefined behaviour, timeout, out of memory) is a defect.
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -39,9 +41,30 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   geoshift::ReadOptions options;
   options.maxVertices = 1 << 16;  // keeps each execution short; the limit itself is under test
+  geoshift::Document doc;
   try {
-    const geoshift::Document doc = geoshift::readDocument(path, options);
-    for (const geoshift::MeshPart& part : doc.parts) geoshift::buildMesh(geoshift::partSoup(part));
+    doc = geoshift::readDocument(path, options);
+  } catch (const geoshift::InputError&) {
+    return 0;
+  }
+  for (const geoshift::MeshPart& part : doc.parts) {
+    try {
+      geoshift::buildMesh(geoshift::partSoup(part));
+    } catch (const geoshift::InputError&) {
+    }
+  }
+  // All instances in world space (bounded by maxVertices at reading), as the writers of OFF, PLY and
+  // STL and the CLI's compare see them.
+  try {
+    geoshift::buildMesh(geoshift::worldSoup(doc));
+  } catch (const geoshift::InputError&) {
+  }
+  // Written back in its own format (what the CLI does after filtering) and read again.
+  static const std::string written = path.substr(0, path.size() - std::strlen(GEOSHIFT_FUZZ_EXTENSION)) +
+                                     "-written" + GEOSHIFT_FUZZ_EXTENSION;
+  try {
+    geoshift::writeDocument(doc, written);
+    geoshift::readDocument(written, options);
   } catch (const geoshift::InputError&) {
   }
   return 0;

@@ -20,7 +20,8 @@ log() { printf '[bootstrap] %s\n' "$*"; }
 
 # --- system packages -------------------------------------------------------------------------
 pkgs=(cmake g++ make pkg-config libeigen3-dev libtinygltf-dev nlohmann-json3-dev catch2
-      libtinyobjloader-dev libcli11-dev libbenchmark-dev libtiff-dev)
+      libtinyobjloader-dev libcli11-dev libbenchmark-dev libtiff-dev
+      clang libclang-rt-dev)  # clang: the sanitizer build and the libFuzzer harnesses (native-asan)
 [ "$wasm" = 1 ] && pkgs+=(emscripten)
 [ "$browser" = 1 ] && pkgs+=(chromium)
 # The Python package (python/, `pip install .` into build/venv) and its tests: Debian's Python only.

@@ -314,6 +314,8 @@ std::int64_t bitsOf(double x) {
 
 Weld weld(const std::vector<Vec3>& positions, const WeldOptions& options) {
   requireFinite(positions);
+  if (std::isnan(options.tolerance) || std::isinf(options.tolerance))
+    throw InputError("weld tolerance must be a finite number, not " + std::to_string(options.tolerance));
   Weld w;
   w.vertexOf.resize(positions.size());
   std::unordered_map<std::array<std::int64_t, 3>, int, KeyHash> cells;
@@ -329,9 +331,14 @@ Weld weld(const std::vector<Vec3>& positions, const WeldOptions& options) {
     } else {
       // Grid of cell size tol: any partner within tol lies in one of the 27 surrounding cells.
       // A cell keeps the first welded vertex that fell into it.
-      const std::array<std::int64_t, 3> c = {static_cast<std::int64_t>(std::floor(p.x() / tol)),
-                                             static_cast<std::int64_t>(std::floor(p.y() / tol)),
-                                             static_cast<std::int64_t>(std::floor(p.z() / tol))};
+      // Cell indices are clamped to +-2^62 (converting a larger double to an integer is undefined,
+      // and the neighbours' +-1 must not overflow): positions that far out in tolerances share the
+      // outermost cells, where only the distance test below decides.
+      auto cell = [&](double x) {
+        constexpr double kMaxCell = 4611686018427387904.0;  // 2^62
+        return static_cast<std::int64_t>(std::clamp(std::floor(x / tol), -kMaxCell, kMaxCell));
+      };
+      const std::array<std::int64_t, 3> c = {cell(p.x()), cell(p.y()), cell(p.z())};
       double best = tol;
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)

@@ -159,3 +159,56 @@ TEST_CASE("glTF: accessors without data are bounded by --max-vertices before all
   CHECK_THAT(errorOf([&] { readDocument((dir / "index-zeros.glb").string()); }),
              Contains("index-zeros.glb: cannot read glTF: accessor[1] invalid bufferView"));
 }
+
+TEST_CASE("glTF: node graphs are trees, and their instances are bounded by --max-vertices", "[io][gltf][errors]") {
+  const auto dir = tempDir("io-gltf-nodes");
+  auto write = [&](const std::string& name, const json& j) {
+    spit(dir / name, glb(j, triangleBin()));
+    return (dir / name).string();
+  };
+  // Wide: 1000 nodes draw the triangle. 3000 vertices in world space fit a limit of 3000; with a
+  // limit of 2000 node 666 is the one too many (666 instances make 1998 vertices), refused while
+  // the instances are gathered, before any world-space copy exists.
+  json j = triangle();
+  j["nodes"] = json::array();
+  for (int n = 0; n < 1000; ++n) j["nodes"].push_back({{"mesh", 0}, {"translation", {0, 0, n}}});
+  j["scenes"][0]["nodes"] = json::array({0});
+  const std::string wide = write("wide.glb", j);
+  const Document doc = readDocument(wide, ReadOptions{3000});
+  REQUIRE(doc.parts.at(0).instances.size() == 1000);
+  CHECK(doc.parts[0].instances[999](2, 3) == 999);
+  CHECK(worldSoup(doc).positions.size() == 3000);
+  CHECK_THAT(errorOf([&] { readDocument(wide, ReadOptions{2000}); }),
+             Contains("wide.glb: node 666 draws mesh 0 'Tri' primitive 0 (3 vertices) once more: with it the nodes "
+                      "draw more than 2000 vertices in world space, the limit (raise it with --max-vertices)"));
+  // Deep: a chain of 100 000 nodes, each the child of the one before and one unit above it, the
+  // last drawing the triangle. Composed without recursion: its world matrix lifts by 99 999 units.
+  j = triangle();
+  j["nodes"] = json::array();
+  for (int n = 0; n < 100000; ++n) {
+    json node = {{"translation", {0, 0, n == 0 ? 0 : 1}}};
+    if (n + 1 < 100000) node["children"] = json::array({n + 1});
+    else node["mesh"] = 0;
+    j["nodes"].push_back(node);
+  }
+  const Document deep = readDocument(write("deep.glb", j));
+  REQUIRE(deep.parts.at(0).instances.size() == 1);
+  CHECK(deep.parts[0].instances[0](2, 3) == 99999);
+  // Cycles and shared children: the schema's hierarchy is a set of disjoint trees.
+  j = triangle();
+  j["nodes"] = json::parse(R"([{"children": [1]}, {"children": [2]}, {"children": [0], "mesh": 0}])");
+  CHECK_THAT(errorOf([&] { readDocument(write("cycle.glb", j)); }),
+             Contains("cycle.glb: node 0 is its own ancestor (node 0 -> node 1 -> node 2 -> node 0, each the parent "
+                      "of the next): a glTF node hierarchy may not contain cycles"));
+  j["nodes"] = json::parse(R"([{"mesh": 0}, {"children": [1], "mesh": 0}])");
+  CHECK_THAT(errorOf([&] { readDocument(write("self.glb", j)); }),
+             Contains("self.glb: node 1 is its own ancestor (node 1 -> node 1, each the parent of the next)"));
+  j["nodes"] = json::array();
+  for (int n = 0; n < 20; ++n) j["nodes"].push_back({{"children", {(n + 1) % 20}}});
+  CHECK_THAT(errorOf([&] { readDocument(write("long-cycle.glb", j)); }),
+             Contains("node 0 is its own ancestor (node 0 -> node 1 -> node 2 -> node 3 -> node 4 -> node 5 -> node 6 "
+                      "-> node 7 -> ... -> node 0,"));
+  j["nodes"] = json::parse(R"([{"children": [2]}, {"children": [2]}, {"mesh": 0}])");
+  CHECK_THAT(errorOf([&] { readDocument(write("two-parents.glb", j)); }),
+             Contains("two-parents.glb: node 2 is a child of node 0 and of node 1: a glTF node has at most one parent"));
+}

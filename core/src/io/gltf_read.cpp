@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -164,23 +164,55 @@ Eigen::Matrix4d localMatrix(const tinygltf::Node& n) {
   return a.matrix();
 }
 
-std::vector<Eigen::Matrix4d> worldMatrices(const tinygltf::Model& model) {
+// World matrices of all nodes. The schema makes the node hierarchy a set of disjoint trees: a node
+// listed as the child of two nodes, or its own ancestor, is an error naming it. Iterative, so that a
+// chain of a million nodes (a few MB of JSON) needs no deep stack.
+std::vector<Eigen::Matrix4d> worldMatrices(const tinygltf::Model& model, const std::string& path) {
   const size_t n = model.nodes.size();
   std::vector<int> parent(n, -1);
   for (size_t i = 0; i < n; ++i)
-    for (int c : model.nodes[i].children)
-      if (c >= 0 && static_cast<size_t>(c) < n) parent[c] = static_cast<int>(i);
+    for (int c : model.nodes[i].children) {
+      if (c < 0 || static_cast<size_t>(c) >= n) continue;  // checkReferences refused these
+      if (parent[c] >= 0)
+        fail(path, "node " + std::to_string(c) + " is a child of node " + std::to_string(parent[c]) + " and of node " +
+                       std::to_string(i) + ": a glTF node has at most one parent (the hierarchy is a set of trees)");
+      parent[c] = static_cast<int>(i);
+    }
   std::vector<Eigen::Matrix4d> world(n);
-  std::vector<int> state(n, 0);  // 0 todo, 1 in progress (cycle guard), 2 done
-  std::function<const Eigen::Matrix4d&(size_t)> get = [&](size_t i) -> const Eigen::Matrix4d& {
-    if (state[i] == 2) return world[i];
-    state[i] = 1;
-    world[i] = localMatrix(model.nodes[i]);
-    if (parent[i] >= 0 && state[parent[i]] != 1) world[i] = get(parent[i]) * world[i];
-    state[i] = 2;
-    return world[i];
-  };
-  for (size_t i = 0; i < n; ++i) get(i);
+  std::vector<char> state(n, 0);  // 0 todo, 1 on the current chain, 2 done
+  std::vector<int> chain;
+  for (size_t start = 0; start < n; ++start) {
+    // Climb to the first ancestor already done (or the root), then compose back down.
+    chain.clear();
+    int i = static_cast<int>(start);
+    while (i >= 0 && state[i] == 0) {
+      state[i] = 1;
+      chain.push_back(i);
+      i = parent[i];
+    }
+    if (i >= 0 && state[i] == 1) {
+      std::vector<int> cycle{i};  // upwards from i back to i, then read downwards
+      for (int k = parent[i]; k != i; k = parent[k]) cycle.push_back(k);
+      cycle.push_back(i);
+      std::string text;
+      for (size_t k = cycle.size(); k-- > 0;) {
+        if (cycle.size() > 10 && k == cycle.size() - 9) {
+          text += " -> ...";
+          k = 1;
+          continue;
+        }
+        text += (text.empty() ? "node " : " -> node ") + std::to_string(cycle[k]);
+      }
+      fail(path, "node " + std::to_string(i) + " is its own ancestor (" + text +
+                     ", each the parent of the next): a glTF node hierarchy may not contain cycles");
+    }
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      const int c = *it;
+      world[c] = parent[c] >= 0 ? Eigen::Matrix4d(world[parent[c]] * localMatrix(model.nodes[c]))
+                                : localMatrix(model.nodes[c]);
+      state[c] = 2;
+    }
+  }
   return world;
 }
 
@@ -269,7 +301,15 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
   }
 
   const auto& model = g.model;
-  const auto world = worldMatrices(model);
+  const auto world = worldMatrices(model, path);
+  std::vector<std::vector<int>> nodesOfMesh(model.meshes.size());
+  for (size_t n = 0; n < model.nodes.size(); ++n)
+    if (model.nodes[n].mesh >= 0 && static_cast<size_t>(model.nodes[n].mesh) < model.meshes.size())
+      nodesOfMesh[model.nodes[n].mesh].push_back(static_cast<int>(n));
+  // Vertices of all instances in world space (what worldSoup and the writers in world space
+  // allocate): bounded like the vertices of one accessor, and by what an int index can address.
+  const size_t worldLimit = std::min<size_t>(options.maxVertices, std::numeric_limits<int>::max());
+  size_t worldVertices = 0;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     const auto& mesh = model.meshes[m];
     const std::string mlabel = "mesh " + std::to_string(m) + " '" + mesh.name + "'";
@@ -405,9 +445,25 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
       part.extras.push_back({semantic, dim, readAccessor(model, acc, path, part.label + " " + semantic, false, options.maxVertices)});
     }
 
-    for (size_t n = 0; n < model.nodes.size(); ++n)
-      if (model.nodes[n].mesh == b.mesh) part.instances.push_back(world[n]);
-    if (part.instances.empty()) part.instances.push_back(Eigen::Matrix4d::Identity());
+    for (int n : nodesOfMesh[b.mesh]) {
+      if (b.vertexCount > worldLimit - worldVertices)
+        fail(path, "node " + std::to_string(n) + " draws " + part.label + " (" + std::to_string(b.vertexCount) +
+                       " vertices) once more: with it the nodes draw more than " + std::to_string(worldLimit) +
+                       " vertices in world space" +
+                       (worldLimit == options.maxVertices ? ", the limit (raise it with --max-vertices)"
+                                                          : ", more than a mesh can index (2^31 - 1)"));
+      worldVertices += b.vertexCount;
+      part.instances.push_back(world[n]);
+    }
+    if (part.instances.empty()) {
+      if (b.vertexCount > worldLimit - worldVertices)
+        fail(path, part.label + " (" + std::to_string(b.vertexCount) + " vertices) and the parts before it make more than " +
+                       std::to_string(worldLimit) + " vertices" +
+                       (worldLimit == options.maxVertices ? ", the limit (raise it with --max-vertices)"
+                                                          : ", more than a mesh can index (2^31 - 1)"));
+      worldVertices += b.vertexCount;
+      part.instances.push_back(Eigen::Matrix4d::Identity());
+    }
     doc.parts.push_back(std::move(part));
   }
 

@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <memory>
+#include <type_traits>
 
 #include <tiffio.h>
 
@@ -33,11 +35,19 @@ struct Closer {
   void operator()(TIFF* t) const { TIFFClose(t); }
 };
 
-// Reads a tag's array whatever way libtiff registered it (known or anonymous field).
+// Reads a tag's array whatever way libtiff registered it (known or anonymous field). libtiff does
+// not know the GeoTIFF tags, so it registers them with the type the file gives: a tag stored with
+// another type than GeoTIFF's (DOUBLE for the matrices, SHORT for the keys) is an error, not
+// values read at the wrong size.
 template <class T>
-std::vector<T> getArray(TIFF* tif, uint32_t tag) {
+std::vector<T> getArray(TIFF* tif, uint32_t tag, const char* name, const std::string& path) {
   const TIFFField* f = TIFFFindField(tif, tag, TIFF_ANY);
   if (!f) return {};
+  const TIFFDataType want = std::is_same_v<T, double> ? TIFF_DOUBLE : TIFF_SHORT;
+  if (TIFFFieldDataType(f) != want || TIFFFieldSetGetSize(f) != static_cast<int>(sizeof(T)))
+    io::fail(path, std::string("GeoTIFF tag ") + std::to_string(tag) + " (" + name + ") is stored as TIFF type " +
+                       std::to_string(static_cast<int>(TIFFFieldDataType(f))) + "; GeoTIFF stores it as " +
+                       (want == TIFF_DOUBLE ? "DOUBLE (12)" : "SHORT (3)"));
   void* data = nullptr;
   uint32_t n = 0;
   if (TIFFFieldPassCount(f)) {
@@ -70,6 +80,32 @@ std::string getAscii(TIFF* tif, uint32_t tag) {
   return s ? std::string(s) : std::string();
 }
 
+// The most bytes one stored byte can decode to under a compression scheme, so that what a file
+// declares (pixels x sample size) is checked against the bytes it holds before anything is
+// allocated: a 200-byte file cannot make us allocate gigabytes. PackBits repeats one byte at most
+// 128 times for a 2-byte run; an LZW code (9 bits or more) emits at most 4096 bytes; zlib's
+// deflate stops at 1032:1. Other codecs (LZMA, ZSTD, JPEG, ...) get a generous 2^16.
+double maxExpansion(uint16_t compression) {
+  switch (compression) {
+    case COMPRESSION_NONE: return 1;
+    case COMPRESSION_PACKBITS: return 64;
+    case COMPRESSION_LZW: return 3641;  // 4096 bytes per 9 bits
+    case COMPRESSION_ADOBE_DEFLATE:
+    case COMPRESSION_DEFLATE: return 1032;
+    default: return 65536;
+  }
+}
+
+// Bytes of strip or tile data the file holds: the byte counts, each clipped to the file's size.
+double storedBytes(TIFF* t, bool tiled, double fileSize) {
+  uint64_t* counts = nullptr;
+  if (!TIFFGetField(t, tiled ? TIFFTAG_TILEBYTECOUNTS : TIFFTAG_STRIPBYTECOUNTS, &counts) || !counts) return 0;
+  const uint32_t n = tiled ? TIFFNumberOfTiles(t) : TIFFNumberOfStrips(t);
+  double sum = 0;
+  for (uint32_t i = 0; i < n; ++i) sum += std::min(static_cast<double>(counts[i]), fileSize);
+  return std::min(sum, fileSize);
+}
+
 }  // namespace
 
 ElevationGrid readGeoTiff(const std::string& path) {
@@ -100,6 +136,21 @@ ElevationGrid readGeoTiff(const std::string& path) {
   if (!okFormat || spp < 1)
     fail("unsupported samples: " + std::to_string(bits) + "-bit, sample format " + std::to_string(format) +
          " (8-64 bit integers and 32/64-bit floats are supported)");
+
+  // Decoded bytes the blocks declare (tiles are whole even where they overhang the image), against
+  // what the stored bytes can decode to.
+  const bool tiled = TIFFIsTiled(t);
+  uint16_t compression = COMPRESSION_NONE;
+  TIFFGetFieldDefaulted(t, TIFFTAG_COMPRESSION, &compression);
+  const double declared = tiled ? static_cast<double>(TIFFNumberOfTiles(t)) * static_cast<double>(TIFFTileSize64(t))
+                                : static_cast<double>(w) * h * (bits / 8) * (planar == PLANARCONFIG_CONTIG ? spp : 1);
+  std::error_code ec;
+  const auto fileSize = std::filesystem::file_size(path, ec);
+  const double stored = storedBytes(t, tiled, ec ? 0.0 : static_cast<double>(fileSize));
+  if (declared > maxExpansion(compression) * stored)
+    fail(std::to_string(w) + " x " + std::to_string(h) + " pixels of " + std::to_string(bits) + "-bit samples need " +
+         io::formatNumber(declared) + " bytes of " + (tiled ? "tiles" : "strips") + ", more than the " + io::formatNumber(stored) +
+         " bytes of them in the file can hold (compression " + std::to_string(compression) + ")");
 
   ElevationGrid g;
   g.width = static_cast<int>(w);
@@ -175,7 +226,7 @@ ElevationGrid readGeoTiff(const std::string& path) {
   }
 
   // Georeferencing.
-  const auto keys = getArray<uint16_t>(t, kGeoKeys);
+  const auto keys = getArray<uint16_t>(t, kGeoKeys, "GeoKeyDirectory", path);
   int modelType = 0, rasterType = 1;
   if (keys.size() >= 4) {
     const size_t nk = std::min<size_t>(keys[3], (keys.size() - 4) / 4);
@@ -188,9 +239,9 @@ ElevationGrid readGeoTiff(const std::string& path) {
   }
   g.geographic = modelType == 2;
   const double shift = rasterType == 2 ? 0.5 : 0.0;  // PixelIsPoint: tie points name cell centres
-  const auto scale = getArray<double>(t, kPixelScale);
-  const auto tie = getArray<double>(t, kTiepoint);
-  const auto m = getArray<double>(t, kTransformation);
+  const auto scale = getArray<double>(t, kPixelScale, "ModelPixelScale", path);
+  const auto tie = getArray<double>(t, kTiepoint, "ModelTiepoint", path);
+  const auto m = getArray<double>(t, kTransformation, "ModelTransformation", path);
   if (m.size() >= 16) {
     g.transform = {m[3], m[0], m[1], m[7], m[4], m[5]};
     g.transform[0] -= shift * (m[0] + m[1]);
