@@ -249,6 +249,11 @@ TEST_CASE("PLY: damaged files are refused naming the file, element, record and l
   CHECK_THAT(err("huge.ply", "ply\nformat binary_big_endian 1.0\nelement vertex 4000000000000\nproperty double x\n"
                              "property double y\nproperty double z\nend_header\n" + std::string(64, '\0'), ReadOptions{~size_t(0)}),
              Contains("huge.ply: element 'vertex' declares 4000000000000 records, more than the remaining 64 bytes"));
+  // An element without properties takes no bytes, so only an explicit rule bounds its count: a
+  // 100-byte file declaring 10^12 such records must be refused at once, not looped over.
+  CHECK_THAT(err("empty-element.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                      "property float z\nelement nothing 1000000000000\nend_header\n" + v.s),
+             Contains("empty-element.ply: element 'nothing' declares 1000000000000 records but no properties"));
   CHECK_THAT(err("ahuge.ply", "ply\nformat ascii 1.0\nelement vertex 30\nproperty float x\nproperty float y\nproperty float z\n"
                               "end_header\n" + verts),
              Contains("ahuge.ply: element 'vertex' declares 30 records, more than the remaining 18 bytes"));

@@ -261,11 +261,12 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
     if (bytes.size() >= 20) {
       uint32_t len = 0;
       std::memcpy(&len, bytes.data() + 12, 4);
-      if (20 + static_cast<size_t>(len) <= bytes.size()) checkJson(path, bytes.substr(20, len));
+      // Compared as lengths left after the header, so that nothing wraps where size_t is 32 bits.
+      const size_t afterHeader = bytes.size() - 20;
+      if (len <= afterHeader) checkJson(path, bytes.substr(20, len));
       // tinygltf refuses an empty BIN chunk as "must have 4 bytes or more, but got 4".
       uint32_t bin[2] = {};
-      const size_t binStart = 20 + static_cast<size_t>(len);
-      if (binStart + 8 <= bytes.size()) std::memcpy(bin, bytes.data() + binStart, 8);
+      if (len <= afterHeader && afterHeader - len >= 8) std::memcpy(bin, bytes.data() + 20 + len, 8);
       if (bin[1] == 0x004e4942 && bin[0] == 0)
         fail(path, "cannot read glTF: the GLB has an empty BIN chunk (0 bytes); a GLB without binary data has no BIN chunk");
     }

@@ -155,7 +155,14 @@ Header parseHeader(const std::string& path, const std::string& b) {
     size_t minRecord = 0;
     for (const Property& p : e.props)
       minRecord += h.encoding == Encoding::Ascii ? 2 : sizeOf(p.list ? p.countType : p.type);
-    if (minRecord == 0) continue;
+    // Records without properties hold nothing, so no size bounds their count: a tiny file could
+    // declare 10^12 of them and keep a reader looping. No writer has a use for them.
+    if (minRecord == 0) {
+      if (e.count > 0)
+        io::fail(path, "element '" + e.name + "' declares " + std::to_string(e.count) +
+                           " records but no properties");
+      continue;
+    }
     // The last ascii value may end the file without a separator.
     const size_t room = h.encoding == Encoding::Ascii ? left + 1 : left;
     if (e.count > room / minRecord)
