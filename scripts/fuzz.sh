@@ -11,7 +11,8 @@
 #   filter                     fuzz/filter_soup.cpp: a short mean shift and denoise of such a mesh
 # Each is seeded from fuzz/seeds/NAME (the mesh readers also from tests/data/damaged) with
 # fuzz/dict/NAME.dict when there is one. The growing corpus
-# stays in build/native-asan/fuzz/corpus/NAME; inputs that crash go to
+# stays in build/native-asan/fuzz/corpus/NAME; GEOSHIFT_FUZZ_SEED fixes libFuzzer's seed (random
+# otherwise). Inputs that crash go to
 # build/native-asan/fuzz/artifacts/NAME/ and make the script fail. Prints the executions each reached.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -65,6 +66,7 @@ for f in "${harnesses[@]}"; do
   args=("$corpus")
   [ -d "$seeds" ] && args+=("$seeds")
   [ -f "$dict" ] && args+=("-dict=$dict")
+  [ -n "${GEOSHIFT_FUZZ_SEED:-}" ] && args+=("-seed=$GEOSHIFT_FUZZ_SEED")
   log "fuzz_$f for ${seconds} s (log: $logf)"
   status=0
   "$build/fuzz/fuzz_$f" "${args[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \

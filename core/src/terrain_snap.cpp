@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "geoshift/error.hpp"
 #include "terrain_detail.hpp"
@@ -28,7 +29,17 @@ Snap makeSnap(const std::vector<const std::vector<Vec3>*>& sets, const char* wha
   s.minX = x0;
   s.minY = y0;
   const double extent = std::max(x1 - x0, y1 - y0);
+  // Coordinates so far apart that their difference overflows (|x| near 1e308) cannot be put on a
+  // grid; an extent so small that the scale overflows puts every point on one grid point (the
+  // triangulation then reports them as coincident).
+  if (!std::isfinite(extent)) {
+    std::ostringstream m;
+    m << what << "s span too large a range to triangulate: x from " << x0 << " to " << x1 << ", y from " << y0
+      << " to " << y1;
+    throw InputError(m.str());
+  }
   s.scale = extent > 0 ? double((std::int64_t(1) << kSnapBits) - 1) / extent : 1.0;
+  if (!std::isfinite(s.scale)) s.scale = 1.0;
   return s;
 }
 

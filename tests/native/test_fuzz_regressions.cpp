@@ -3,6 +3,7 @@
 // enough to read, and must now give a clean error or a correct result.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -125,4 +126,18 @@ TEST_CASE("GeoTIFF: georeferencing tags stored with another type are errors, not
   spit(dir / "keys.tif", stripTiff(4, 3, 1, 12, {{34735, 4, 1}}));
   CHECK_THAT(errorOf([&] { readGeoTiff((dir / "keys.tif").string()); }),
              Contains("GeoTIFF tag 34735 (GeoKeyDirectory) is stored as TIFF type 4; GeoTIFF stores it as SHORT (3)"));
+}
+
+TEST_CASE("GeoTIFF: a text tag without a terminating NUL is read to its count, not past it",
+          "[io][terrain][geotiff][fuzz]") {
+  const auto dir = tempDir("io-fuzz-tiff-ascii");
+  // fuzz_tif: GDAL_NODATA (42113) stored as 4 UNDEFINED bytes (type 7, so libtiff adds no NUL as
+  // it does for ASCII); the reader took it as a C string and strlen read past libtiff's 4-byte copy
+  // (heap-buffer-overflow).
+  const std::uint32_t zeros = '0' | '0' << 8 | '0' << 16 | '0' << 24;
+  spit(dir / "nodata.tif", stripTiff(4, 3, 1, 12, {{42113, 7, zeros, 4}}));
+  const ElevationGrid g = readGeoTiff((dir / "nodata.tif").string());
+  REQUIRE(g.values.size() == 12);
+  // "0000" is the nodata value: every cell (all zeros) is nodata.
+  for (double v : g.values) CHECK(std::isnan(v));
 }

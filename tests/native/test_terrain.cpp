@@ -137,6 +137,14 @@ TEST_CASE("Delaunay refuses what it cannot triangulate", "[terrain][delaunay][er
             .find("collinear") != std::string::npos);
   CHECK(errorOf([] { delaunay2d({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, NAN, 0)}); }).find("point 2") !=
         std::string::npos);
+  // Found by fuzz_las: coordinates whose difference overflows a double used to snap to INT64_MIN
+  // and overflow the orientation predicate; a subnormal extent overflowed the grid scale.
+  CHECK(errorOf([] { delaunay2d({Vec3(-1e308, 0, 0), Vec3(1e308, 0, 0), Vec3(0, 1, 0)}); })
+            .find("span too large a range") != std::string::npos);
+  CHECK(errorOf([] { delaunay2d({Vec3(0, 0, 0), Vec3(5e-324, 0, 0), Vec3(0, 5e-324, 0)}); }) != "(no error)");
+  TerrainPoints far;
+  far.positions = {Vec3(-1.5e308, 0, 0), Vec3(1.5e308, 0, 0), Vec3(0, 1e308, 0), Vec3(0, -1e308, 1)};
+  CHECK(errorOf([&] { pointTerrain(far); }).find("span too large a range") != std::string::npos);
 }
 
 TEST_CASE("height above a planar ground is exact inside the TIN; outside, along the nearest hull edge",

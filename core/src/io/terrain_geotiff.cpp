@@ -70,13 +70,16 @@ std::string getAscii(TIFF* tif, uint32_t tag) {
   if (!f) return {};
   char* s = nullptr;
   if (TIFFFieldPassCount(f)) {
+    // A counted value is the file's bytes as stored: nothing guarantees a terminating NUL (a
+    // fuzzed file without one made strlen read past the buffer), so the count bounds it.
     uint32_t n = 0;
     uint16_t n16 = 0;
     const bool ok = TIFFFieldReadCount(f) == TIFF_VARIABLE2 ? TIFFGetField(tif, tag, &n, &s) : TIFFGetField(tif, tag, &n16, &s);
-    if (!ok) return {};
-  } else if (!TIFFGetField(tif, tag, &s)) {
-    return {};
+    if (!ok || !s) return {};
+    const size_t count = TIFFFieldReadCount(f) == TIFF_VARIABLE2 ? n : n16;
+    return std::string(s, ::strnlen(s, count));
   }
+  if (!TIFFGetField(tif, tag, &s)) return {};
   return s ? std::string(s) : std::string();
 }
 
