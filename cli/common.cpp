@@ -1,6 +1,8 @@
+#include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
+#include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
 
 namespace geoshift::cli {
@@ -20,10 +22,25 @@ void save(const Document& doc, const std::string& path) {
   for (const std::string& w : writeDocument(doc, path)) std::cerr << "geoshift: warning: " << w << "\n";
 }
 
+namespace {
+
+// "file: part" for messages, the part left out where it is only the file's name again (OBJ, OFF).
+std::string where(const Document& doc, const MeshPart& part) {
+  const std::string name = std::filesystem::path(doc.path).filename().string();
+  return part.label.empty() || part.label == name ? doc.path : doc.path + ": " + part.label;
+}
+
+}  // namespace
+
 MeshBuild buildPart(const Document& doc, const MeshPart& part) {
-  MeshBuild b = buildMesh(partSoup(part));
+  MeshBuild b;
+  try {
+    b = buildMesh(partSoup(part));
+  } catch (const InputError& e) {  // the core names the faces; the file and part are known here
+    throw InputError(where(doc, part) + ": " + e.what());
+  }
   for (const std::string& m : b.report.messages)
-    std::cerr << "geoshift: note: " << doc.path << ": " << part.label << ": " << m << "\n";
+    std::cerr << "geoshift: note: " << where(doc, part) << ": " << m << "\n";
   return b;
 }
 

@@ -49,6 +49,15 @@ TEST_CASE("cli: PLY and STL in, PLY and STL out, errors as messages", "[cli][io]
   CHECK(r.code == 1);
   CHECK_THAT(r.err, Contains("declares 5 vertices, more than the limit of 4 (raise it with --max-vertices)"));
   CHECK(geoshiftCli("--max-vertices 5 info " + q(dir / "in.ply")).code == 0);
+
+  // A file whose every face is degenerate: the message names the file (and the part, where the
+  // format has parts), and nothing is written.
+  spit(dir / "flat.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n");
+  r = geoshiftCli("denoise " + q(dir / "flat.ply") + " -o " + q(dir / "never.ply"));
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Contains((dir / "flat.ply").string() + ": PLY: no valid triangles: all 1 faces are degenerate"));
+  CHECK_FALSE(fs::exists(dir / "never.ply"));
 }
 
 
