@@ -25,9 +25,14 @@ test('every damaged file of the catalogue is refused with the core\'s message; t
       assert.equal(s.state, 'error', `${c.file} was accepted: ${s.text}`);
       assert.ok(s.text.startsWith(`Could not read ${c.file}`), s.text);
       assert.ok(s.text.includes(c.error), `${s.text}\n  should hold: ${c.error}`);
-      // The same words as the module under Node (one line, without a final period).
-      const expected = geoshift.readFile(c.file, new Uint8Array(bytes)).error.replace(/\.+$/, '');
-      assert.ok(s.text.includes(`Could not read ${expected}.`), `${s.text}\n  module: ${expected}`);
+      // The same words as the module under Node (one line, without a final period), except that the
+      // readers' hint at the CLI's option says in the page whose option it is.
+      const moduleError = geoshift.readFile(c.file, new Uint8Array(bytes)).error.replace(/\.+$/, '');
+      const hint = / \(raise (?:it|the limit) with --max-vertices\)/;
+      const shown = moduleError.replace(hint, " (this page's limit; the command-line tool can raise it with --max-vertices)");
+      assert.ok(s.text.includes(`Could not read ${shown}.`), `${s.text}\n  module: ${moduleError}`);
+      assert.equal(hint.test(s.text), false, s.text);
+      if (c.error.includes('more than the limit of')) assert.match(s.text, /the command-line tool can raise it/);
       assert.match(s.text, /Still showing ChineseDragon-10kv\.off\.$/);
       assert.deepEqual(await stats(app.page), SAMPLE);
     });

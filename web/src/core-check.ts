@@ -41,14 +41,18 @@ export function isCompressedGltf(fileName: string, data: ArrayBuffer): boolean {
   return COMPRESSION.test(new TextDecoder().decode(json));
 }
 
-/** One line: tinygltf's messages may hold several, and the sentence ends with the page's own '.'. */
-function sentence(message: string): string {
+/**
+ * One line: tinygltf's messages may hold several, and the sentence ends with the page's own '.'.
+ * The readers' hint at the CLI's --max-vertices says here whose option it is: the page's limit is fixed.
+ */
+export function sentence(message: string): string {
   return message
     .split('\n')
     .map((line) => line.trim())
     .filter(Boolean)
     .join('; ')
-    .replace(/\.+$/, '');
+    .replace(/\.+$/, '')
+    .replace(/ \(raise (?:it|the limit) with --max-vertices\)/g, " (this page's limit; the command-line tool can raise it with --max-vertices)");
 }
 
 /**
