@@ -92,6 +92,7 @@ std::vector<int> evalPresmoothing;
 int evalVertexIterations = 0;
 double evalRadius = 0;
 int evalPatience = 0;
+long long evalSeed = -1;  // --seed: of the risk estimate's probe
 
 Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   Mesh m = noisy;
@@ -104,6 +105,7 @@ Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   if (evalVertexIterations > 0) o.vertexIterations = evalVertexIterations;
   if (evalRadius > 0) o.neighborhood.radius = evalRadius;
   if (evalPatience > 0) o.patience = evalPatience;
+  if (evalSeed >= 0) o.seed = static_cast<std::uint64_t>(evalSeed);
   const DenoiseResult r = denoise(m, o);
   std::ostringstream note;
   note.precision(3);
@@ -335,7 +337,7 @@ int usage(const char* error) {
                "  --mesh      only meshes whose name contains SUBSTRING (case-insensitive)\n"
                "  --quick     a small subset, as a smoke test\n"
                "  --pairs     only the ground-truth pairs\n"
-               "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience  the default denoiser's options of those names\n"
+               "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience, --seed  the default denoiser's options of those names\n"
                "  --method    only methods whose name contains SUBSTRING\n"
                "  --noise-estimate  only the estimated against the true noise level of each case\n"
                "  --markdown  also write the tables to FILE\n"
@@ -370,6 +372,7 @@ int main(int argc, char** argv) {
       } else if (a == "--vertex-iterations") evalVertexIterations = std::stoi(value());
       else if (a == "--radius") evalRadius = std::stod(value());
       else if (a == "--patience") evalPatience = std::stoi(value());
+      else if (a == "--seed") evalSeed = std::stoll(value());
       else if (a == "--hr") {
         std::stringstream list(value());
         for (std::string item; std::getline(list, item, ',');) evalRange.push_back(std::stod(item));

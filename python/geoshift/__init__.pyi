@@ -132,7 +132,7 @@ class DenoiseOptions:
     def __init__(self, *, preset: Literal["default", "paper"] = "default", noise_level: float = 0.0,
                  strength: float = 1.0, range_bandwidths: Sequence[float] = (0.35,),
                  neighborhood: Union[FaceNeighborhoodOptions, dict, None] = None,
-                 support_smoothing: Union[TaubinOptions, dict, None] = None, presmoothing: Sequence[int] = (2, 10),
+                 support_smoothing: Union[TaubinOptions, dict, None] = None, presmoothing: Sequence[int] = (3, 15),
                  max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
                  levels: int = 0, alpha: Sequence[float] = (0.0,),

@@ -68,7 +68,7 @@ struct DenoiseOptions {
   TaubinOptions supportSmoothing;        // the support the neighbourhoods are found on (10 steps)
   // Candidate Taubin steps before the passes; the risk estimate picks one (and its pass count).
   // The candidates race: one clearly behind the leader stops early (docs/denoising.md#the-default-pipeline).
-  std::vector<int> presmoothing = {2, 10};
+  std::vector<int> presmoothing = {3, 15};
   int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk
   int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
