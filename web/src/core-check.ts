@@ -45,7 +45,7 @@ export function isCompressedGltf(fileName: string, data: ArrayBuffer): boolean {
  * One line: tinygltf's messages may hold several, and the sentence ends with the page's own '.'.
  * The readers' hint at the CLI's --max-vertices says here whose option it is: the page's limit is fixed.
  */
-export function sentence(message: string): string {
+function sentence(message: string): string {
   return message
     .split('\n')
     .map((line) => line.trim())

@@ -74,10 +74,10 @@ std::string getAscii(TIFF* tif, uint32_t tag) {
     // fuzzed file without one made strlen read past the buffer), so the count bounds it.
     uint32_t n = 0;
     uint16_t n16 = 0;
-    const bool ok = TIFFFieldReadCount(f) == TIFF_VARIABLE2 ? TIFFGetField(tif, tag, &n, &s) : TIFFGetField(tif, tag, &n16, &s);
+    const bool wide = TIFFFieldReadCount(f) == TIFF_VARIABLE2;
+    const bool ok = wide ? TIFFGetField(tif, tag, &n, &s) : TIFFGetField(tif, tag, &n16, &s);
     if (!ok || !s) return {};
-    const size_t count = TIFFFieldReadCount(f) == TIFF_VARIABLE2 ? n : n16;
-    return std::string(s, ::strnlen(s, count));
+    return std::string(s, ::strnlen(s, wide ? n : n16));
   }
   if (!TIFFGetField(tif, tag, &s)) return {};
   return s ? std::string(s) : std::string();
