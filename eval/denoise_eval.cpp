@@ -93,6 +93,8 @@ int evalVertexIterations = 0;
 double evalRadius = 0;
 int evalPatience = 0;
 long long evalSeed = -1;  // --seed: of the risk estimate's probe
+int evalRiskNormalSmoothing = -1;  // --risk-normal-smoothing
+int evalFixedPasses = 0;  // --fixed-passes: no risk estimate, the first pre-smoothing candidate and this many passes
 
 Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   Mesh m = noisy;
@@ -106,6 +108,8 @@ Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   if (evalRadius > 0) o.neighborhood.radius = evalRadius;
   if (evalPatience > 0) o.patience = evalPatience;
   if (evalSeed >= 0) o.seed = static_cast<std::uint64_t>(evalSeed);
+  if (evalFixedPasses > 0) o.fixedPasses = evalFixedPasses;
+  if (evalRiskNormalSmoothing >= 0) o.riskNormalSmoothing = evalRiskNormalSmoothing;
   const DenoiseResult r = denoise(m, o);
   std::ostringstream note;
   note.precision(3);
@@ -113,8 +117,11 @@ Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
     note << o.paper.passes << " passes, " << r.meanIterations << " iterations/vertex/pass";
   else
     note << "noise " << r.noiseLevel << " AEL (estimated); Taubin " << r.presmoothingSteps << " + " << r.passes
-         << " at h_r " << r.rangeBandwidth
-         << " passes by SURE (est. error " << r.estimatedError << " AEL)";
+         << " at h_r " << r.rangeBandwidth;
+  if (preset == DenoisePreset::Default && evalFixedPasses > 0)
+    note << " passes (fixed)";
+  else if (preset == DenoisePreset::Default)
+    note << " passes by SURE (est. error " << r.estimatedError << " AEL)";
   note << ", " << r.threads << " threads";
   return Outcome{m.positions(), note.str()};
 }
@@ -337,7 +344,7 @@ int usage(const char* error) {
                "  --mesh      only meshes whose name contains SUBSTRING (case-insensitive)\n"
                "  --quick     a small subset, as a smoke test\n"
                "  --pairs     only the ground-truth pairs\n"
-               "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience, --seed  the default denoiser's options of those names\n"
+               "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience, --seed, --fixed-passes, --risk-normal-smoothing  the default denoiser's options of those names\n"
                "  --method    only methods whose name contains SUBSTRING\n"
                "  --noise-estimate  only the estimated against the true noise level of each case\n"
                "  --markdown  also write the tables to FILE\n"
@@ -373,6 +380,8 @@ int main(int argc, char** argv) {
       else if (a == "--radius") evalRadius = std::stod(value());
       else if (a == "--patience") evalPatience = std::stoi(value());
       else if (a == "--seed") evalSeed = std::stoll(value());
+      else if (a == "--fixed-passes") evalFixedPasses = std::stoi(value());
+      else if (a == "--risk-normal-smoothing") evalRiskNormalSmoothing = std::stoi(value());
       else if (a == "--hr") {
         std::stringstream list(value());
         for (std::string item; std::getline(list, item, ',');) evalRange.push_back(std::stod(item));

@@ -76,8 +76,9 @@ struct DenoiseOptions {
   std::uint64_t seed = 1;   // of the risk estimate's random probe
   // The risk estimate measures each vertex's error along a normal: that of a copy of the input
   // smoothed by this many Taubin steps (0: the noisy input's own normals, which point off by
-  // about the noise's angle). docs/denoising.md#the-default-pipeline has the figures.
-  int riskNormalSmoothing = 3;
+  // about the noise's angle). More steps than the lightest pre-smoothing candidate, so that the
+  // directions do not share that candidate's noise (docs/denoising.md#the-default-pipeline).
+  int riskNormalSmoothing = 6;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
 
   // --- Paper preset ---
