@@ -94,8 +94,14 @@ const std::vector<Method>& methods() {
            line << "Taubin " << r.presmoothingSteps << " steps + " << r.passes << " mean shift passes (fixed)";
          } else {
            line << "Taubin " << r.presmoothingSteps << " steps + " << r.passes
-                << " mean shift passes chosen by SURE (estimated error " << r.estimatedError << " AEL, "
-                << r.passesRun << " passes computed)";
+                << " mean shift passes chosen by SURE (estimated error ";
+           // The unbiased estimate can come out below zero when the result is much closer to the
+           // truth than the noise; that is below what one probe resolves (docs/denoising.md).
+           if (r.estimatedError > 0)
+             line << r.estimatedError << " AEL";
+           else
+             line << "too small to resolve";
+           line << ", " << r.passesRun << " passes computed)";
          }
          line << ", " << r.threads << " threads";
          std::cerr << line.str() << "\n";
