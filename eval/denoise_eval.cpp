@@ -115,13 +115,14 @@ Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
   note.precision(3);
   if (preset == DenoisePreset::Paper)
     note << o.paper.passes << " passes, " << r.meanIterations << " iterations/vertex/pass";
-  else
+  else {
     note << "noise " << r.noiseLevel << " AEL (estimated); Taubin " << r.presmoothingSteps << " + " << r.passes
          << " at h_r " << r.rangeBandwidth;
-  if (preset == DenoisePreset::Default && evalFixedPasses > 0)
-    note << " passes (fixed)";
-  else if (preset == DenoisePreset::Default)
-    note << " passes by SURE (est. error " << r.estimatedError << " AEL)";
+    if (evalFixedPasses > 0)
+      note << " passes (fixed)";
+    else
+      note << " passes by SURE (est. error " << r.estimatedError << " AEL)";
+  }
   note << ", " << r.threads << " threads";
   return Outcome{m.positions(), note.str()};
 }
