@@ -160,9 +160,9 @@ struct OracleCache {
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
   std::optional<double> strength, radius;
-  std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, ladder;
-  std::optional<double> normalWeight;
-  bool ladderStarts = false, trace = false;
+  std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing;
+  std::optional<bool> refineNoise, crossValidation;
+  bool trace = false, trueNoise = false;
   std::vector<double> range;
   std::vector<int> presmoothing;
   bool paper = false;
@@ -178,11 +178,25 @@ struct WhatIf {
     if (!range.empty()) o.rangeBandwidths = range;
     if (!presmoothing.empty()) o.presmoothing = presmoothing;
     if (probeSpacing) o.probeSpacing = *probeSpacing;
-    if (ladder) o.taubinLadder = *ladder;
-    if (normalWeight) o.normalRiskWeight = *normalWeight;
-    if (ladderStarts) o.ladderStartsPasses = true;
+    if (refineNoise) o.refineNoise = *refineNoise;
+    if (crossValidation) o.crossValidation = *crossValidation;
   }
 };
+
+// The noise along the clean mesh's vertex normals, RMS in the noisy mesh's average edge lengths: what
+// estimateNoise estimates.
+double trueNoiseLevel(const Case& c) {
+  const std::vector<Vec3> n = vertexNormals(c.clean);
+  double sum = 0;
+  int count = 0;
+  for (int v = 0; v < c.clean.vertexCount(); ++v) {
+    if (n[v].squaredNorm() == 0) continue;
+    const double d = (c.noisy.position(v) - c.clean.position(v)).dot(n[v]);
+    sum += d * d;
+    ++count;
+  }
+  return std::sqrt(sum / std::max(1, count)) / averageEdgeLength(c.noisy);
+}
 
 std::string fixed3(double x) {
   char buf[64];
@@ -199,17 +213,26 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
     o.preset = DenoisePreset::Paper;
   } else {
     w.apply(o);
+    if (w.trueNoise) o.noiseLevel = trueNoiseLevel(c);
   }
   std::ostringstream trace;
   if (w.trace && !paper) {
     // Every candidate's risks against the truth (slow: two distance queries per candidate).
     trace.precision(4);
-    o.onCandidate = [&](int steps, int passes, const std::vector<Vec3>& x, double positionRisk, double normalRisk) {
+    // The directions the risk is measured along, as the denoiser finds them (6 Taubin steps).
+    Mesh smoothed = c.noisy;
+    TaubinOptions six;
+    six.iterations = o.riskNormalSmoothing;
+    taubinSmooth(smoothed, six);
+    const std::vector<Vec3> N = vertexNormals(smoothed);
+    o.onCandidate = [&, N](int steps, int passes, const std::vector<Vec3>& x, double positionRisk) {
       const Score s = scoreOf(c, x, "", -1);
       const double ael = averageEdgeLength(c.noisy);
-      trace << "  trace " << c.mesh << " | " << c.noise << " | k " << steps << " t " << passes << " | SURE pos "
-            << std::sqrt(std::max(0.0, positionRisk)) / ael << " AEL, normal " << std::sqrt(std::max(0.0, normalRisk)) * 57.29578
-            << "° | true " << fixed3(s.rms) << " / " << fixed3(s.angle) << "\n";
+      double along = 0;
+      for (size_t v = 0; v < x.size(); ++v) along += std::pow((x[v] - c.clean.position(v)).dot(N[v]), 2);
+      along = std::sqrt(along / x.size()) / ael;
+      trace << "  trace " << c.mesh << " | " << c.noise << " | k " << steps << " t " << passes << " | SURE "
+            << positionRisk / (ael * ael) << " AEL² | true along N " << fixed3(along) << " AEL | true " << fixed3(s.rms) << " / " << fixed3(s.angle) << "\n";
     };
   }
   const auto t0 = std::chrono::steady_clock::now();
@@ -222,7 +245,8 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
     note << o.paper.passes << " passes";
   } else {
     note << "σ " << r.noiseLevel << " AEL; Taubin " << r.presmoothingSteps << " + " << r.passes << " passes"
-         << (o.fixedPasses > 0 ? " (fixed)" : "") << (o.taubinLadder > 0 ? "; ladder " + std::to_string(r.ladderSteps) : "");
+         << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "")
+         << (o.fixedPasses > 0 ? " (fixed)" : "");
   }
   return scoreOf(c, m.positions(), note.str(), ms);
 }
@@ -362,37 +386,24 @@ int usage(const char* error) {
          "  --jobs N           cases evaluated at once (default 2; each method runs on one thread)\n"
          "  --paper            also the paper preset\n"
          "  --split            print the families of each set and exit\n"
+         "  --oracles-only     only fill the oracles' cache (no denoiser, no report)\n"
          "  --noise-estimate   only the estimated against the true noise level of each case\n"
          "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience,\n"
-         "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --normal-weight, --ladder, --ladder-starts\n"
+         "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --cross-validation on|off\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors (slow)\n"
+         "  --true-noise       the denoiser is given the true noise level (an oracle experiment)\n"
          "  --cache DIR        the oracles' score cache (default build/eval-cache); --no-cache to recompute\n"
          "  --markdown FILE    also write the report to FILE\n"
          "  --data DIR         the shared data folder (default ../shared/data of the repository)\n";
   return error ? 2 : 0;
 }
 
-// The noise along the clean mesh's vertex normals, RMS in the noisy mesh's average edge lengths: what
-// estimateNoise estimates.
-double trueNoiseLevel(const Case& c) {
-  const std::vector<Vec3> n = vertexNormals(c.clean);
-  double sum = 0;
-  int count = 0;
-  for (int v = 0; v < c.clean.vertexCount(); ++v) {
-    if (n[v].squaredNorm() == 0) continue;
-    const double d = (c.noisy.position(v) - c.clean.position(v)).dot(n[v]);
-    sum += d * d;
-    ++count;
-  }
-  return std::sqrt(sum / std::max(1, count)) / averageEdgeLength(c.noisy);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string filter, markdownPath, setFilter = "all";
-  bool quick = false, pairsOnly = false, paper = false, splitOnly = false, noiseOnly = false;
+  bool quick = false, pairsOnly = false, paper = false, splitOnly = false, noiseOnly = false, oraclesOnly = false;
   int jobs = 2;
   std::vector<std::uint64_t> seeds = {1};
   WhatIf whatIf;
@@ -418,6 +429,7 @@ int main(int argc, char** argv) {
       else if (a == "--pairs") pairsOnly = true;
       else if (a == "--paper") paper = true;
       else if (a == "--split") splitOnly = true;
+      else if (a == "--oracles-only") oraclesOnly = true;
       else if (a == "--noise-estimate") noiseOnly = true;
       else if (a == "--seeds") seeds = parseSeeds(value());
       else if (a == "--jobs") jobs = std::max(1, std::stoi(value()));
@@ -431,10 +443,10 @@ int main(int argc, char** argv) {
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());
-      else if (a == "--normal-weight") whatIf.normalWeight = std::stod(value());
-      else if (a == "--ladder") whatIf.ladder = std::stoi(value());
-      else if (a == "--ladder-starts") whatIf.ladderStarts = true;
       else if (a == "--trace") whatIf.trace = true;
+      else if (a == "--true-noise") whatIf.trueNoise = true;
+      else if (a == "--refine-noise") whatIf.refineNoise = value() != "off";
+      else if (a == "--cross-validation") whatIf.crossValidation = value() != "off";
       else if (a == "--cache") cache.dir = value();
       else if (a == "--no-cache") cache.dir.clear();
       else if (a == "--markdown") markdownPath = value();
@@ -514,9 +526,33 @@ int main(int argc, char** argv) {
         if (!cases[t]) continue;
         const Case& c = *cases[t];
         if (noiseOnly) {
+          // Experimental estimators beside the default: the mean of all quadric residual variances,
+          // and the mean over vertices whose two-ring on a smoothed support still misfits by less
+          // than tau of the noisy misfit (creases survive the smoothing, noise does not).
+          const std::vector<int> at = noiseSampleVertices(c.noisy);
+          const std::vector<double> v = quadricResidualVariances(c.noisy, at);
+          Mesh support = c.noisy;
+          taubinSmooth(support, TaubinOptions{});
+          const std::vector<double> w = quadricResidualVariances(support, at);
+          const double ael = averageEdgeLength(c.noisy);
+          auto level = [&](double tau, double* kept) {
+            double sum = 0;
+            int count = 0, all = 0;
+            for (size_t i = 0; i < v.size(); ++i) {
+              if (v[i] < 0 || w[i] < 0) continue;
+              ++all;
+              if (tau > 0 && w[i] > tau * v[i]) continue;
+              sum += v[i];
+              ++count;
+            }
+            if (kept) *kept = all ? double(count) / all : 0;
+            return count ? std::sqrt(sum / count) / ael : 0.0;
+          };
+          double k1, k2, k3;
+          const double a = level(0, nullptr), b = level(0.1, &k1), d = level(0.2, &k2), e = level(0.4, &k3);
           std::lock_guard lock(log);
-          std::printf("noise | %-32s | %-36s | true %.3f | estimated %.3f | clean mesh %.3f\n", c.mesh.c_str(), c.noise.c_str(),
-                      trueNoiseLevel(c), estimateNoise(c.noisy).level, estimateNoise(c.clean).level);
+          std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f)\n",
+                      c.mesh.c_str(), c.noise.c_str(), trueNoiseLevel(c), estimateNoise(c.noisy).level, a, b, k1, d, k2, e, k3);
           continue;
         }
         Result& r = results[t];
@@ -524,6 +560,10 @@ int main(int argc, char** argv) {
         r.noisy = scoreOf(c, c.noisy.positions(), "", -1);
         r.taubin = cache.get(c, "taubin-tuned", taubinTuned);
         r.bilateral = cache.get(c, "bilateral-tuned", bilateralTuned);
+        if (oraclesOnly) {
+          r.c = nullptr;
+          continue;
+        }
         for (std::uint64_t seed : seeds) r.ours.push_back(ours(c, whatIf, seed, false));
         if (paper) r.paper = ours(c, whatIf, 1, true);
         if (!c.gcnResult.empty()) {
@@ -552,7 +592,7 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  if (noiseOnly) return 0;
+  if (noiseOnly || oraclesOnly) return 0;
   results.erase(std::remove_if(results.begin(), results.end(), [](const Result& r) { return r.c == nullptr; }), results.end());
 
   std::ostringstream md;

@@ -107,6 +107,8 @@ async function main() {
       `${((Number(kb[1]) * 1024) / vertexCount).toFixed(0)} bytes per vertex`);
   }
 
+  scanMemory(dir);
+
   // Node wasm, single-threaded flavour: time inside run(), the copy of the result included.
   try {
     const geoshift = await loadGeoshift();
@@ -142,6 +144,52 @@ async function main() {
     console.log(`wasm (1 thread) / native (1 thread) speed: ${ratio.toFixed(2)} (target >= 0.60: ${ratio >= 0.6 ? 'met' : 'NOT met'})`);
   }
   fs.rmSync(dir, { recursive: true, force: true });
+}
+
+// Peak memory on a scan read from OBJ (issue 27's second case): Julius's clean mesh with every
+// triangle split in four (about 144k vertices), 0.3 AEL of fixed noise from `geoshift noise --seed 3`,
+// denoised by the CLI into OBJ. Skipped when ../shared/data is absent.
+function scanMemory(dir) {
+  const data = process.env.GEOSHIFT_SHARED_DATA || path.resolve(import.meta.dirname, '../../../shared/data');
+  const julius = path.join(data, 'guided_denoising_bldeng/models/Julius0.2/Original.obj');
+  if (!fs.existsSync(julius) || !fs.existsSync(nativeCli) || !fs.existsSync('/usr/bin/time')) {
+    console.log('scan peak memory: skipped (needs ../shared/data, the native CLI and /usr/bin/time)');
+    return;
+  }
+  const v = [];
+  const f = [];
+  for (const line of fs.readFileSync(julius, 'utf8').split('\n')) {
+    const t = line.trim().split(/\s+/);
+    if (t[0] === 'v') v.push([Number(t[1]), Number(t[2]), Number(t[3])]);
+    else if (t[0] === 'f') f.push(t.slice(1, 4).map((s) => Number(s.split('/')[0]) - 1));
+  }
+  // Midpoints shared by the two faces of an edge.
+  const mid = new Map();
+  const midpoint = (a, b) => {
+    const key = a < b ? `${a},${b}` : `${b},${a}`;
+    if (!mid.has(key)) {
+      mid.set(key, v.length);
+      v.push([0, 1, 2].map((c) => (v[a][c] + v[b][c]) / 2));
+    }
+    return mid.get(key);
+  };
+  const faces = [];
+  for (const [a, b, c] of f) {
+    const ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+    faces.push([a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]);
+  }
+  const clean = path.join(dir, 'julius4.obj');
+  fs.writeFileSync(clean, v.map((p) => `v ${p.join(' ')}`).join('\n') + '\n' +
+    faces.map((t) => `f ${t[0] + 1} ${t[1] + 1} ${t[2] + 1}`).join('\n') + '\n');
+  const noisy = path.join(dir, 'julius4-noisy.obj');
+  const n = spawnSync(nativeCli, ['noise', clean, '-o', noisy, '--amount', '0.3', '--dist', 'fixed', '--seed', '3'], { encoding: 'utf8' });
+  if (n.status !== 0) throw new Error(`noise failed: ${n.stderr}`);
+  const r = spawnSync('/usr/bin/time', ['-f', 'peak %M KB', nativeCli, 'denoise', noisy, '-o', path.join(dir, 'julius4-out.obj')],
+    { encoding: 'utf8' });
+  const kb = /peak (\d+) KB/.exec(r.stderr);
+  if (r.status !== 0 || !kb) throw new Error(`scan denoise failed: ${r.stderr}`);
+  console.log(`scan peak memory (Julius split in four, ${v.length} vertices, OBJ in and out): ${(Number(kb[1]) / 1024).toFixed(0)} MB, ` +
+    `${((Number(kb[1]) * 1024) / v.length).toFixed(0)} bytes per vertex`);
 }
 
 // The threaded web flavour in a module worker of a page served with COOP/COEP (so that

@@ -39,9 +39,7 @@ void validate(const DenoiseOptions& o) {
   if (o.vertexIterations < 1 || o.vertexIterations > 10000)
     bad("vertex iterations must be in [1, 10000] (got " + std::to_string(o.vertexIterations) + ")");
   if (o.probeSpacing < 1 || o.probeSpacing > 100) bad("probe spacing must be in [1, 100] edges (got " + std::to_string(o.probeSpacing) + ")");
-  if (!(o.normalRiskWeight >= 0) || !std::isfinite(o.normalRiskWeight))
-    bad("normal risk weight must be >= 0 (got " + std::to_string(o.normalRiskWeight) + ")");
-  if (o.taubinLadder < 0 || o.taubinLadder > 10000) bad("Taubin ladder must be in [0, 10000] steps (got " + std::to_string(o.taubinLadder) + ")");
+  if (o.crossValidation && o.probeSpacing < 2) bad("cross-validation needs a probe spacing of at least 2 edges (got " + std::to_string(o.probeSpacing) + ")");
 }
 
 // One copy of the mesh being denoised: its positions and the face normals its guard refers to.
@@ -106,21 +104,25 @@ class Passes {
   FaceNeighborhoods hoods_;
 };
 
-// What candidates are ranked by: the position risk, plus the normal risk weighted by
-// normalRiskWeight, each relative to its value for the noise itself (σ² and σ² tr L / area), so
-// that the weight does not depend on the mesh's scale or resolution.
+// What candidates are ranked by: their position risk over σ², so that the race's tolerances are
+// fractions of the noise's risk.
 struct Ranking {
-  double positionScale = 1, normalScale = 0;
-  double operator()(const Risk& r) const { return positionScale * r.position + normalScale * r.normal; }
+  const RiskEstimate& risk;
+  double sigma = 0;  // the noise level candidates are ranked with (before the strength)
+  double operator()(const RiskSums& s) const {
+    const double ranked = sigma * risk.strength();
+    return risk.at(s, sigma).position / (ranked * ranked);
+  }
 };
 
 // The candidates race in step, one pass each in turn. A candidate stops after `patience` passes that
-// did not lower its rank by 0.2% of the noise's, and, once it has run `patience` passes, as soon as
-// its best rank is kRaceMargin of the noise's above the leader's: it is unlikely to catch up, and a
-// lead smaller than that is within what one probe can tell apart anyway. The passes it would have
-// run are half the cost (docs/denoising.md#the-default-pipeline).
+// did not lower its rank by kTolerance of the noise's, and, once it has run `patience` passes, as
+// soon as its best rank is kRaceMargin of the noise's above the leader's: it is unlikely to catch
+// up, and a lead smaller than that is within what one probe can tell apart anyway. The passes it
+// would have run are half the cost (docs/denoising.md#the-default-pipeline). Every score is kept
+// (its sums), so that the noise level can be refined afterwards and the candidates ranked again.
 class CandidateRace {
-  static constexpr double kTolerance = 0.002, kRaceMargin = 0.005;  // of the noise's rank
+  static constexpr double kTolerance = 0.002, kRaceMargin = 0.005;
 
  public:
   CandidateRace(const DenoiseOptions& o, const RiskEstimate& risk, const Ranking& rank, DenoiseResult& result)
@@ -135,13 +137,11 @@ class CandidateRace {
     double best = 0;
     bool active = true;
   };
-
-  // Scores a candidate that is not part of the race (a step of the Taubin ladder).
-  double score(int steps, const std::vector<Vec3>& x, const std::vector<Vec3>& xp) {
-    const Risk r = risk_(x, xp);
-    offer(steps, o_.rangeBandwidths.front(), 0, x, r);
-    return rank_(r);
-  }
+  struct Scored {
+    int steps, passes;
+    double rangeBandwidth;
+    RiskSums sums;
+  };
 
   void add(Run run) {
     runs_.push_back(std::move(run));
@@ -171,33 +171,31 @@ class CandidateRace {
     }
   }
 
-  // The winner's positions (moved out) and its unbiased risk.
+  const std::vector<Scored>& scored() const { return scored_; }
+  // The best candidate by the race's ranking: its positions (moved out) and index in scored().
   std::vector<Vec3> takeBest() { return std::move(best_); }
-  const Risk& bestRisk() const { return bestRisk_; }
+  size_t bestIndex() const { return bestIndex_; }
 
  private:
   void scoreRun(Run& run) {
-    const Risk r = risk_(run.x.positions, run.xp.positions);
-    const double value = rank_(r);
+    const double value = offer(run.steps, run.rangeBandwidth, run.t, run.x.positions, risk_.sums(run.x.positions, run.xp.positions));
     if (run.t == 0 || value < run.anchor - kTolerance) {
       run.anchor = value;
       run.lastBest = run.t;
     }
     if (run.t == 0 || value < run.best) run.best = value;
-    offer(run.steps, run.rangeBandwidth, run.t, run.x.positions, r);
   }
 
-  void offer(int steps, double hr, int passes, const std::vector<Vec3>& x, const Risk& r) {
-    if (o_.onCandidate) o_.onCandidate(steps, passes, x, r.positionUnbiased, r.normalUnbiased);
-    const double value = rank_(r);
+  double offer(int steps, double hr, int passes, const std::vector<Vec3>& x, const RiskSums& sums) {
+    if (o_.onCandidate) o_.onCandidate(steps, passes, x, risk_.at(sums, rank_.sigma).positionUnbiased);
+    scored_.push_back({steps, passes, hr, sums});
+    const double value = rank_(sums);
     if (best_.empty() || value < bestValue_) {
       bestValue_ = value;
-      bestRisk_ = r;
       best_ = x;
-      result_.presmoothingSteps = steps;
-      result_.rangeBandwidth = hr;
-      result_.passes = passes;
+      bestIndex_ = scored_.size() - 1;
     }
+    return value;
   }
 
   const DenoiseOptions& o_;
@@ -205,8 +203,9 @@ class CandidateRace {
   const Ranking& rank_;
   DenoiseResult& result_;
   std::vector<Run> runs_;
+  std::vector<Scored> scored_;
   std::vector<Vec3> best_;
-  Risk bestRisk_;
+  size_t bestIndex_ = 0;
   double bestValue_ = 0;
 };
 
@@ -220,8 +219,10 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   result.threads = resolveThreads(o.threads);
   const double ael = averageEdgeLength(mesh);
   double level = o.noiseLevel;
+  NoiseEstimate estimate;
   if (level == 0) {
-    level = estimateNoise(mesh).level;
+    estimate = estimateNoise(mesh);
+    level = estimate.level;
     result.noiseEstimated = true;
   }
   level *= o.strength;
@@ -264,43 +265,24 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     return finish();
   }
 
+  // The noise level the race ranks with: the estimate, or with refineNoise its upper estimate
+  // (refined below from the candidates).
+  const double lowSigma = sigma / o.strength;
+  const double raceSigma = o.refineNoise && result.noiseEstimated && !o.crossValidation ? std::max(lowSigma, estimate.upperLevel * ael) : lowSigma;
   RiskOptions riskOptions;
   riskOptions.normalSmoothing = o.riskNormalSmoothing;
   riskOptions.taubin = o.supportSmoothing;
   riskOptions.seed = o.seed;
   riskOptions.probeSpacing = o.probeSpacing;
-  const double strength = o.strength;
-  const RiskEstimate risk(mesh, input, sigma / strength, strength, riskOptions);
+  riskOptions.crossValidation = o.crossValidation;
+  const RiskEstimate risk(mesh, input, raceSigma, o.strength, riskOptions);
   std::vector<Vec3> probed = risk.probedInput();
   const VertexUpdateOptions probedUpdate = passes.updateFrom(probed);
 
-  // Ranking relative to the noise: its position risk is σ² (ranked with the strength), its normal
-  // risk that of the noisy input measured against the input itself.
-  Ranking rank;
-  rank.positionScale = 1 / (sigma * sigma);
-  if (o.normalRiskWeight > 0 && risk.noiseNormalRisk() > 0) rank.normalScale = o.normalRiskWeight / risk.noiseNormalRisk();
+  Ranking rank{risk, raceSigma};
   CandidateRace race(o, risk, rank, result);
 
-  // The Taubin ladder: k = 0, 1, ..., taubinLadder steps without passes, scored as they come.
-  std::vector<int> starts = o.presmoothing;
-  if (o.taubinLadder > 0) {
-    Track x{input, &inputUpdate}, xp{probed, &probedUpdate};
-    int bestK = 0;
-    double bestValue = race.score(0, x.positions, xp.positions);
-    for (int k = 1; k <= o.taubinLadder; ++k) {
-      passes.presmooth(x, 1);
-      passes.presmooth(xp, 1);
-      const double value = race.score(k, x.positions, xp.positions);
-      if (value < bestValue) {
-        bestValue = value;
-        bestK = k;
-      }
-    }
-    result.ladderSteps = bestK;
-    if (o.ladderStartsPasses && starts.size() > 1) starts.back() = std::max(starts.front() + 1, bestK);
-  }
-
-  for (int steps : starts) {
+  for (int steps : o.presmoothing) {
     for (double hr : o.rangeBandwidths) {
       CandidateRace::Run run{steps, hr, {input, &inputUpdate}, {probed, &probedUpdate}};
       passes.presmooth(run.x, steps);
@@ -310,8 +292,39 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   std::vector<Vec3>().swap(probed);  // the probe tracks have started from it
   race.run(passes, progress);
-  result.estimatedError = std::sqrt(std::max(0.0, race.bestRisk().positionUnbiased)) / ael;
-  result.estimatedNormalError = std::sqrt(std::max(0.0, race.bestRisk().normalUnbiased)) * 180 / 3.14159265358979323846;
+
+  // Refinement: the least noise variance a good candidate implies, kept between the two estimates,
+  // then every candidate ranked again with it; the winner is recomputed if it changed.
+  const std::vector<CandidateRace::Scored>& scored = race.scored();
+  size_t chosen = race.bestIndex();
+  double finalSigma = raceSigma;
+  rank.sigma = finalSigma;
+  if (o.refineNoise && result.noiseEstimated && !o.crossValidation) {
+    double implied = raceSigma * raceSigma;
+    for (const auto& c : scored) {
+      const double v = risk.impliedVariance(c.sums);
+      if (v > 0) implied = std::min(implied, v);
+    }
+    finalSigma = std::clamp(std::sqrt(implied), 0.5 * lowSigma, raceSigma);
+    rank.sigma = finalSigma;
+    for (size_t i = 0; i < scored.size(); ++i)
+      if (rank(scored[i].sums) < rank(scored[chosen].sums)) chosen = i;
+  }
+  const CandidateRace::Scored& winner = scored[chosen];
+  result.presmoothingSteps = winner.steps;
+  result.rangeBandwidth = winner.rangeBandwidth;
+  result.passes = winner.passes;
+  if (finalSigma != raceSigma || raceSigma != lowSigma) result.noiseLevel = finalSigma * o.strength / ael;
+  const Risk winnerRisk = risk.at(winner.sums, finalSigma);
+  result.estimatedError = std::sqrt(std::max(0.0, winnerRisk.positionUnbiased)) / ael;
+  if (chosen != race.bestIndex()) {
+    Track x{input, &inputUpdate};
+    passes.presmooth(x, winner.steps);
+    for (int t = 0; t < winner.passes; ++t) passes.pass(x, winner.rangeBandwidth, result);
+    mesh.positions() = std::move(x.positions);
+    restore.armed = false;
+    return finish();
+  }
   mesh.positions() = race.takeBest();
   restore.armed = false;
   return finish();

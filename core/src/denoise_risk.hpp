@@ -1,36 +1,43 @@
 #pragma once
 // The default denoiser's risk estimate (docs/denoising.md#the-risk-estimate): Stein's unbiased
 // risk estimate of a candidate's error, from the candidate and the same candidate computed from a
-// probed copy of the input (Monte-Carlo SURE, Ramani, Blu and Unser 2008). Two losses, both
-// measured along the normals N of a lightly smoothed copy of the input:
-//  - position: the mean squared displacement error e_i = (x_i − x*_i)·N_i over the vertices;
-//  - normal: the Dirichlet energy Σ_f A_f |∇_f e|² of that error over the surface, divided by its
-//    area: to first order, the mean squared angle between the candidate's face normals and the
-//    truth's (a vertex moved by e along the normal tilts each of its faces by e / height).
+// probed copy of the input (Monte-Carlo SURE, Ramani, Blu and Unser 2008). The error is measured
+// along the normals N of a smoothed copy of the input: e_i = (x_i − x*_i)·N_i, mean of e² over the
+// vertices.
 #include <cstdint>
 #include <vector>
 
 #include "geoshift/mesh.hpp"
-#include "geoshift/parallel.hpp"
 #include "geoshift/smoothing.hpp"
 
 namespace geoshift::denoise_detail {
 
 struct RiskOptions {
-  int normalSmoothing = 6;  // Taubin steps of the copy that gives N and the Dirichlet weights
-  TaubinOptions taubin;     // its λ, μ and weights (the iteration count is normalSmoothing)
-  std::uint64_t seed = 1;   // of the probe's signs
+  int normalSmoothing = 20;  // Taubin steps of the copy that gives N
+  TaubinOptions taubin;      // its λ, μ and weights (the iteration count is normalSmoothing)
+  std::uint64_t seed = 1;    // of the probe's signs
   // 1: every vertex is probed (±1 each). d > 1: only vertices at least d edges apart from each other
   // (chosen greedily in index order), so that the probe's cross terms, which carry its randomness,
   // mostly vanish; the divergence is scaled up from the probed vertices to all.
   int probeSpacing = 1;
+  // Cross-validation instead of Stein's estimate: the probed vertices are held out (their positions
+  // replaced by the mean of their neighbours') and each candidate computed from that input is scored
+  // by its distance along N to the held-out positions at those vertices. Unbiased for any noise that
+  // is independent between vertices (Stein's estimate needs it Gaussian; impulsive noise breaks it).
+  bool crossValidation = false;
 };
 
-// Both risks of a candidate: position in squared length per vertex, normal in rad² (area mean):
-// `ranked` with σ times the strength (what candidates are ranked by), `unbiased` with σ.
+// A candidate's risk, in squared length per vertex: `ranked` with σ times the strength (what
+// candidates are ranked by), `unbiased` with σ.
 struct Risk {
-  double position = 0, normal = 0;
-  double positionUnbiased = 0, normalUnbiased = 0;
+  double position = 0, positionUnbiased = 0;
+};
+
+// What the risk is made of, for one candidate: Σ e² and the divergence (scaled to all vertices);
+// with cross-validation, also the held-out vertices' Σ of squared distances. The risk for any σ
+// follows from them (RiskEstimate::at).
+struct RiskSums {
+  double fit = 0, div = 0, heldOut = 0;
 };
 
 class RiskEstimate {
@@ -39,25 +46,30 @@ class RiskEstimate {
   // sigma: the noise level in the mesh's units, strength: its multiplier for ranking.
   RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double sigma, double strength, const RiskOptions& options);
 
-  // The input moved by ε b_i N_i at every probed vertex: where the probe's copy of each candidate starts.
+  // The input moved by ε b_i N_i at every probed vertex (cross-validation: the held-out input):
+  // where the probe's copy of each candidate starts.
   std::vector<Vec3> probedInput() const;
-  // The risks of candidate x, whose copy computed from probedInput() is xp.
-  Risk operator()(const std::vector<Vec3>& x, const std::vector<Vec3>& xp) const;
+  // The sums of candidate x, whose copy computed from probedInput() is xp.
+  RiskSums sums(const std::vector<Vec3>& x, const std::vector<Vec3>& xp) const;
+  // The risk from the sums for a noise level sigma (ranked with sigma × strength).
+  Risk at(const RiskSums& s, double sigma) const;
+  // The noise variance at which the candidate's risk would be zero: Σ e² / (m − 2 div). Its
+  // expectation is σ² plus the candidate's error over (m − 2 tr J), so the least over good
+  // candidates bounds the noise from above (docs/denoising.md#the-noise-level); 0 when
+  // m − 2 div <= m / 2 (a light candidate says nothing).
+  double impliedVariance(const RiskSums& s) const;
 
+  double strength() const { return strength_; }
   int probedVertices() const { return probed_; }
-  // The normal risk of the noise itself (of the input as a candidate, in expectation): σ² tr L / area,
-  // with σ times the strength.
-  double noiseNormalRisk() const { return area_ > 0 ? sigmaRanked_ * sigmaRanked_ * traceL_ / area_ : 0.0; }
 
  private:
-  const Mesh& mesh_;
   const std::vector<Vec3>& input_;
-  std::vector<Vec3> normals_;          // N; zero where a vertex has none (not measured)
-  std::vector<signed char> probe_;     // b: ±1 at probed vertices, else 0
-  std::vector<float> cot_;             // per face corner k: cot of its angle / 2, the weight of the opposite edge
-  double sigma_ = 0, sigmaRanked_ = 0, eps_ = 0;
-  double traceL_ = 0, area_ = 0;       // Σ_i L_ii over measured vertices; the surface's area
+  std::vector<Vec3> normals_;       // N; zero where a vertex has none (not measured)
+  std::vector<signed char> probe_;  // b: ±1 at probed vertices, else 0 (cross-validation: 1 where held out)
+  std::vector<Vec3> heldOutInput_;  // cross-validation: the input with the held-out vertices replaced
+  double sigma_ = 0, strength_ = 1, eps_ = 0;
   int measured_ = 0, probed_ = 0;
+  bool crossValidation_ = false;
 };
 
 }  // namespace geoshift::denoise_detail

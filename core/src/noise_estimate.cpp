@@ -78,21 +78,36 @@ double localVariance(const Mesh& mesh, const std::vector<int>& ring) {
 
 }  // namespace
 
-NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples) {
-  NoiseEstimate out;
+std::vector<int> noiseSampleVertices(const Mesh& mesh, int maxSamples) {
+  std::vector<int> out;
   const int n = mesh.vertexCount();
   if (mesh.faceCount() == 0 || n == 0 || maxSamples < 1) return out;
-  const double ael = averageEdgeLength(mesh);
   const int stride = std::max(1, (n + maxSamples - 1) / maxSamples);
-  std::vector<int> mark(n, -1), ring;
-  std::vector<double> variances;
-  for (int v = 0; v < n; v += stride) {
-    if (mesh.isIsolated(v) || mesh.isBoundaryVertex(v)) continue;
+  for (int v = 0; v < n; v += stride)
+    if (!mesh.isIsolated(v) && !mesh.isBoundaryVertex(v)) out.push_back(v);
+  return out;
+}
+
+std::vector<double> quadricResidualVariances(const Mesh& mesh, const std::vector<int>& vertices) {
+  std::vector<int> mark(mesh.vertexCount(), -1), ring;
+  std::vector<double> out;
+  out.reserve(vertices.size());
+  for (int v : vertices) {
     twoRing(mesh, v, mark, v, ring);
     const double var = localVariance(mesh, ring);
-    if (var >= 0 && std::isfinite(var)) variances.push_back(var);
+    out.push_back(var >= 0 && std::isfinite(var) ? var : -1.0);
   }
+  return out;
+}
+
+NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples) {
+  NoiseEstimate out;
+  const std::vector<double> all = quadricResidualVariances(mesh, noiseSampleVertices(mesh, maxSamples));
+  std::vector<double> variances;
+  for (double v : all)
+    if (v >= 0) variances.push_back(v);
   if (variances.empty()) return out;
+  const double ael = averageEdgeLength(mesh);
   std::sort(variances.begin(), variances.end());
   // The lower half of the per-vertex variances: vertices on creases and corners, whose quadric fit
   // fails, sit in the upper half on any mesh that is not mostly crease. For Gaussian residuals a
@@ -103,6 +118,9 @@ NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples) {
   for (size_t i = 0; i < keep; ++i) sum += variances[i];
   out.absolute = std::sqrt(sum / keep / 0.69);
   out.level = out.absolute / ael;
+  double total = sum;
+  for (size_t i = keep; i < variances.size(); ++i) total += variances[i];
+  out.upperLevel = std::sqrt(total / variances.size()) / ael;
   out.samples = static_cast<int>(variances.size());
   return out;
 }

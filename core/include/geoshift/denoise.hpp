@@ -83,18 +83,17 @@ struct DenoiseOptions {
   // The probe of the risk estimate: 1 probes every vertex; d > 1 only vertices at least d edges apart,
   // whose divergence is scaled up to all (docs/denoising.md#the-risk-estimate).
   int probeSpacing = 1;
-  // Candidates are ranked by their position risk plus this weight times their normal risk (the
-  // Dirichlet energy of the error: first-order face normal error), each relative to the noise's own.
-  double normalRiskWeight = 0;
-  // > 0: candidates of 0, 1, ..., taubinLadder Taubin steps and no pass are scored too (cheap).
-  int taubinLadder = 0;
-  // With the ladder: the last pre-smoothing candidate becomes the ladder's best step count.
-  bool ladderStartsPasses = false;
+  // Rank candidates by cross-validation on held-out vertices (probeSpacing >= 2) instead of Stein's
+  // estimate (docs/denoising.md#the-risk-estimate).
+  bool crossValidation = false;
+  // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
+  // refined from the candidates (the least variance a good one implies) and they are ranked again
+  // (docs/denoising.md#noise-level-from-the-candidates).
+  bool refineNoise = false;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
-  // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risks
-  // (position: mean squared error along the normals; normal: rad²): for evaluations and diagnostics.
-  std::function<void(int steps, int passes, const std::vector<Vec3>& positions, double positionRisk, double normalRisk)>
-      onCandidate;
+  // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risk
+  // (mean squared error along the normals): for evaluations and diagnostics.
+  std::function<void(int steps, int passes, const std::vector<Vec3>& positions, double risk)> onCandidate;
 
   // --- Paper preset ---
   PaperDenoiseOptions paper;
@@ -116,8 +115,6 @@ struct DenoiseResult {
   int passes = 0;               // chosen
   int passesRun = 0;            // computed, all candidates
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL
-  double estimatedNormalError = 0;  // its normal risk: RMS face normal error to first order, degrees
-  int ladderSteps = 0;          // the Taubin ladder's best step count (taubinLadder > 0)
   size_t neighborhoodBytes = 0;
   // Paper preset
   double meanIterations = 0;     // of the mean shift, per vertex per pass

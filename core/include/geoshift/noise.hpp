@@ -43,10 +43,19 @@ struct NoiseEstimate {
   double level = 0;    // RMS displacement across the surface, in multiples of the average edge length
   double absolute = 0; // the same in the mesh's units
   int samples = 0;     // vertices that contributed (interior, two-ring of at least 9 vertices)
+  // The mean of all the per-vertex estimates, creases and corners included: at or above the noise
+  // on most meshes (creases add to it), and above `level` where the noise is impulsive (a few
+  // vertices moved far), which the lower half leaves out. In average edge lengths.
+  double upperLevel = 0;
 };
 
 // Deterministic and independent of threads. Uses at most `maxSamples` vertices spread evenly over
 // the index range. A mesh with no usable vertex gives level 0 and samples 0.
 NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples = 40000);
+
+// Its parts: the sampled vertices (interior, not isolated, evenly spread over the index range), and
+// the residual variance of the quadric fitted to each one's two-ring (−1 where unusable).
+std::vector<int> noiseSampleVertices(const Mesh& mesh, int maxSamples = 40000);
+std::vector<double> quadricResidualVariances(const Mesh& mesh, const std::vector<int>& vertices);
 
 }  // namespace geoshift
