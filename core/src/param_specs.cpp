@@ -65,7 +65,7 @@ class P {
     s_.cli = std::move(name);
     return *this;
   }
-  operator ParamSpec() const { return s_; }
+  ParamSpec take() { return std::move(s_); }
 
  private:
   ParamSpec s_;
@@ -73,13 +73,22 @@ class P {
 
 using T = ParamType;
 
+// The parameters moved into a vector one by one (an initializer list would copy each of them).
+template <class... Params>
+std::vector<ParamSpec> table(Params&&... params) {
+  std::vector<ParamSpec> out;
+  out.reserve(sizeof...(params));
+  (out.push_back(params.take()), ...);
+  return out;
+}
+
 ParamValue numbers(const std::vector<int>& v) { return std::vector<double>(v.begin(), v.end()); }
 
 OpParamSpecs noiseSpecs() {
   const NoiseOptions d;
   return {"noise",
           "Seeded synthetic displacement of the vertices (as `geoshift noise`)",
-          {
+          table(
               P("amount", T::Number, "magnitude in multiples of the average edge length (AEL)").byDefault(d.amount).range(0, 100),
               P("distribution", T::Enum,
                 "fixed: |d| = amount AEL; uniform: |d| in [0, amount AEL]; gaussian: sigma = amount AEL; impulsive: "
@@ -88,39 +97,35 @@ OpParamSpecs noiseSpecs() {
               P("direction", T::Enum, "random: a uniformly random direction; normal: along the vertex normal")
                   .choices({"random", "normal"}).byDefault(std::string("random")),
               P("seed", T::Integer, "random seed: the same seed gives the same noise natively and in wasm")
-                  .byDefault(static_cast<double>(d.seed)).range(0, kMaxSafeInteger),
-          }};
+                  .byDefault(static_cast<double>(d.seed)).range(0, kMaxSafeInteger))};
 }
 
 OpParamSpecs smoothSpecs() {
   const TaubinOptions d;
   return {"smooth",
           "Taubin lambda|mu smoothing of the positions (as `geoshift smooth`)",
-          {
+          table(
               P("iterations", T::Integer, "lambda|mu step pairs").byDefault(static_cast<double>(d.iterations)).range(0, 1e6),
               P("lambda", T::Number, "shrinking step, > 0").byDefault(d.lambda).range(-10, 10),
               P("mu", T::Number, "inflating step, < -lambda").byDefault(d.mu).range(-10, 10),
               P("weights", T::Enum, "Laplacian weights: uniform, fujiwara (1/length), cotangent")
-                  .choices({"uniform", "fujiwara", "cotangent"}).byDefault(std::string("uniform")),
-          }};
+                  .choices({"uniform", "fujiwara", "cotangent"}).byDefault(std::string("uniform")))};
 }
 
 OpParamSpecs curvatureSpecs() {
   return {"curvature",
           "Discrete curvature as the scalar _CURVATURE and its color map (as `geoshift curvature`)",
-          {
+          table(
               P("kind", T::Enum, "abs = |k1|+|k2| (MeshLab), mean H, gauss K, rms")
-                  .choices({"abs", "mean", "gauss", "rms"}).byDefault(std::string("abs")),
-          }};
+                  .choices({"abs", "mean", "gauss", "rms"}).byDefault(std::string("abs")))};
 }
 
 OpParamSpecs geodesicSpecs() {
   return {"geodesic",
           "Geodesic distance from a vertex as the scalar _GEODESIC, -1 beyond the radius (as `geoshift geodesic`)",
-          {
+          table(
               P("source", T::Integer, "the source vertex (an index of the mesh as loaded)").byDefault(0.0).range(0, kInf),
-              P("radius", T::Number, "stop at this geodesic distance, in AEL (default: the whole mesh)").positive(),
-          }};
+              P("radius", T::Number, "stop at this geodesic distance, in AEL (default: the whole mesh)").positive())};
 }
 
 OpParamSpecs filterSpecs() {
@@ -129,7 +134,7 @@ OpParamSpecs filterSpecs() {
   return {"filter",
           "Riemannian mean shift (mode ms) or blurring mean shift (bms) of a vertex signal; the hybrid filter "
           "with levels > 0 (as `geoshift filter`)",
-          {
+          table(
               P("signal", T::Text,
                 "color, normal, curvature, terrain, or attribute names, several separated by commas")
                   .byDefault(std::string("color")),
@@ -157,8 +162,7 @@ OpParamSpecs filterSpecs() {
               P("alpha", T::Number,
                 "detail gain per level, finest first, or one for all: 1 restores the details, 0 drops them, > 1 enhances")
                   .list().byDefault(h.alpha).range(-kInf, kInf),
-              P("filterGeometry", T::Boolean, "with levels: the gains apply to the positions too").byDefault(h.filterGeometry),
-          }};
+              P("filterGeometry", T::Boolean, "with levels: the gains apply to the positions too").byDefault(h.filterGeometry))};
 }
 
 OpParamSpecs denoiseSpecs() {
@@ -174,7 +178,7 @@ OpParamSpecs denoiseSpecs() {
   const ParamCondition taubin = {{"method", {"taubin"}}};
   return {"denoise",
           "Vertex positions denoised, keeping sharp features (as `geoshift denoise`; docs/denoising.md)",
-          {
+          table(
               P("method", T::Enum,
                 "meanshift: mean shift of the normals, then the vertex update (preset default or paper); bilateral: "
                 "bilateral normal filtering (Zheng et al. 2011), then the vertex update; taubin: Taubin lambda|mu "
@@ -259,8 +263,7 @@ OpParamSpecs denoiseSpecs() {
               P("iterations", T::Integer, "Taubin lambda|mu step pairs")
                   .byDefault(static_cast<double>(t.iterations)).range(0, 1e6).appliesWhen(taubin).cli("taubin-iterations"),
               P("lambda", T::Number, "Taubin shrinking step, > 0").byDefault(t.lambda).range(-10, 10).appliesWhen(taubin),
-              P("mu", T::Number, "Taubin inflating step, < -lambda").byDefault(t.mu).range(-10, 10).appliesWhen(taubin),
-          }};
+              P("mu", T::Number, "Taubin inflating step, < -lambda").byDefault(t.mu).range(-10, 10).appliesWhen(taubin))};
 }
 
 OpParamSpecs waveletSpecs() {
@@ -268,23 +271,26 @@ OpParamSpecs waveletSpecs() {
   return {"wavelet",
           "Multiresolution smoothing (alpha < 1) or enhancement (alpha > 1) of the positions and colors (as "
           "`geoshift wavelet`)",
-          {
+          table(
               P("levels", T::Integer, "analysis levels (each removes about a quarter of the vertices)")
                   .byDefault(static_cast<double>(d.levels)).range(0, kInf),
               P("alpha", T::Number,
                 "detail gain, one for all levels or one per level, finest first: 0 removes the details, 1 keeps "
                 "them, > 1 enhances")
                   .list().byDefault(std::vector<double>{0}).range(-kInf, kInf),
-              P("positionsOnly", T::Boolean, "leave the vertex colors as they are").byDefault(false),
-          }};
+              P("positionsOnly", T::Boolean, "leave the vertex colors as they are").byDefault(false))};
 }
 
 }  // namespace
 
 const std::vector<OpParamSpecs>& paramSpecs() {
-  static const std::vector<OpParamSpecs> table = {noiseSpecs(),  smoothSpecs(),  curvatureSpecs(), geodesicSpecs(),
-                                                  filterSpecs(), denoiseSpecs(), waveletSpecs()};
-  return table;
+  static const std::vector<OpParamSpecs> tables = [] {
+    std::vector<OpParamSpecs> all;
+    for (OpParamSpecs (*make)() : {noiseSpecs, smoothSpecs, curvatureSpecs, geodesicSpecs, filterSpecs, denoiseSpecs, waveletSpecs})
+      all.push_back(make());
+    return all;
+  }();
+  return tables;
 }
 
 const OpParamSpecs& paramSpecsOf(std::string_view op) {
