@@ -28,33 +28,12 @@ export interface BuildReport {
   messages: string[];
 }
 
-export interface ProcessMeshSuccess {
-  ok: true;
-  /** Vertices of the welded (and repaired) mesh. */
-  weldedVertexCount: number;
-  /** Faces of that mesh (degenerate input faces dropped). */
-  faceCount: number;
-  /** Caller vertex -> mesh vertex; length = positions.length / 3. */
-  vertexOf: Int32Array;
-  report: BuildReport;
-  /** Mean edge length of the welded mesh: the unit of every spatial parameter. */
-  averageEdgeLength: number;
-  /** Per caller vertex: mean curvature H, positive on a sphere with outward normals. */
-  meanCurvature: Float32Array;
-  /** Per caller vertex: Gaussian curvature K. */
-  gaussianCurvature: Float32Array;
-  /** Per caller vertex: |k1| + |k2| (MeshLab's "absolute" curvature). */
-  absoluteCurvature: Float32Array;
-}
-
 /** Every call reports failure as a value; nothing throws across the boundary. */
 export interface Failure {
   ok: false;
   /** The core's message, meant for the user as it is (names the face, vertex or index). */
   error: string;
 }
-
-export type ProcessMeshResult = ProcessMeshSuccess | Failure;
 
 /** Counts and unit of a mesh the module keeps (loadMesh). */
 export interface LoadMeshSuccess {
@@ -64,7 +43,10 @@ export interface LoadMeshSuccess {
   /** Caller vertices (positions.length / 3): the layout every result comes back in. */
   vertexCount: number;
   weldedVertexCount: number;
+  /** Faces of the welded mesh (degenerate input faces dropped). */
   faceCount: number;
+  /** Caller vertex -> welded vertex; length = vertexCount. */
+  vertexOf: Int32Array;
   /** Mean edge length of the welded mesh: the unit (AEL) of every spatial parameter. */
   averageEdgeLength: number;
   report: BuildReport;
@@ -98,7 +80,7 @@ export interface OpParams {
   filter: {
     signal?: string; mode?: 'ms' | 'bms'; passes?: number; hs?: number; hr?: number; radius?: number;
     kmax?: number; eps?: number; rangeUpdate?: 'joint' | 'sampled'; segments?: boolean; threads?: number;
-    levels?: number; alpha?: number; filterGeometry?: boolean;
+    levels?: number; alpha?: number | number[]; filterGeometry?: boolean;
   };
   /**
    * Denoising of the positions, as `geoshift denoise`. meanshift (default), preset 'default': noise
@@ -110,18 +92,22 @@ export interface OpParams {
    * bilateral: normalIterations, sigmaC (AEL, 0 = automatic), sigmaS, neighbors. taubin:
    * iterations, lambda, mu. A parameter of another method than the chosen one is an error.
    * levels > 0 (meanshift only): denoise a mesh coarsened that many wavelet levels and add the
-   * details back times alpha (default 0).
+   * details back times alpha (default 0). paramSpecs().denoise has every default and range.
    */
   denoise: {
     method?: 'meanshift' | 'bilateral' | 'taubin';
     preset?: 'default' | 'paper'; noise?: number; strength?: number;
     hs?: number; hr?: number; radius?: number; kmax?: number; eps?: number; passes?: number;
+    presmoothing?: number | number[]; maxPasses?: number; patience?: number; seed?: number;
     rangeUpdate?: 'joint' | 'sampled'; faceNormals?: 'consensus' | 'mean'; threads?: number;
-    supportIterations?: number; vertexIterations?: number;
+    supportIterations?: number; exactCharts?: boolean; doubleWeights?: boolean; vertexIterations?: number;
+    fixedBoundary?: boolean; flipGuard?: 'input' | 'input-or-target';
     normalIterations?: number; sigmaC?: number; sigmaS?: number; neighbors?: 'vertex' | 'edge';
     iterations?: number; lambda?: number; mu?: number;
-    levels?: number; alpha?: number;
+    levels?: number; alpha?: number | number[];
   };
+  /** Multiresolution smoothing (alpha < 1) or enhancement (alpha > 1) of positions and colors, as `geoshift wavelet`. */
+  wavelet: { levels?: number; alpha?: number | number[]; positionsOnly?: boolean };
   // Added with its op (ops_wavelet.cpp); untyped until then.
   [op: string]: Record<string, unknown>;
 }
@@ -188,21 +174,37 @@ export interface ReadFileFailure extends Failure {
 }
 export type ReadFileResult = ReadFileSuccess | ReadFileFailure;
 
+/** One parameter of an op's table (the core's params.hpp), as paramSpecs() gives it. */
+export interface ParamSpec {
+  type: 'number' | 'integer' | 'boolean' | 'enum' | 'string';
+  doc: string;
+  /** Absent: none, or computed by the op (the doc says how). A list's default is a number when it is one value. */
+  default?: number | boolean | string | number[];
+  min?: number;
+  max?: number;
+  /** min itself is refused (the parameter must be > min). */
+  minExclusive?: true;
+  /** enum: the choices. */
+  values?: string[];
+  /** number, integer: one value or an array of them (e.g. one per level). */
+  list?: true;
+  /** Applies only where one of these holds: each named parameter has one of the listed values. */
+  when?: Record<string, string[]>[];
+  /** Other defaults or bounds where `when` holds (the first that holds). */
+  cases?: { when: Record<string, string[]>; default?: number | boolean | string | number[]; min?: number; max?: number }[];
+}
+export type ParamSpecs = Record<string, { doc: string; params: Record<string, ParamSpec> }>;
+
 /** Called with the fraction done of the named stage; return true to stop the run. */
 export type ProgressCallback = (fraction: number, stage: string) => boolean | void;
 
 export interface GeoshiftModule {
-  /**
-   * Welds coincident vertices, builds the mesh and computes its discrete curvatures. The arrays are
-   * copied in; the result's arrays are fresh copies that stay valid whatever the module does next.
-   * @param positions x, y, z per vertex, in the caller's layout
-   * @param indices three vertex indices per triangle, counter-clockwise from outside
-   */
-  processMesh(positions: Float32Array, indices: Uint32Array): ProcessMeshResult;
   /** Welds and builds a mesh the module keeps until freeMesh; arrays are copied in. */
   loadMesh(positions: Float32Array, indices: Uint32Array, extras?: MeshExtras): LoadMeshResult;
   /** Adds or replaces a per-vertex signal (dim numbers per caller vertex). "normal" is a unit vector. */
   setAttribute(handle: number, name: string, dim: number, values: Float32Array): { ok: true } | Failure;
+  /** Every op's parameter table: types, defaults, ranges, choices, docs, where each applies. */
+  paramSpecs(): ParamSpecs;
   /** Forgets a mesh; false when the handle was unknown. */
   freeMesh(handle: number): boolean;
   /**
