@@ -49,6 +49,10 @@ emscripten::val previewWithoutProgress(int handle, const std::string& op, const 
 // vertices, triangles, warnings } or { ok: false, error[, outOfMemory] } with the CLI's message
 // (read_file.cpp). Nothing of the file is kept.
 emscripten::val readFile(const std::string& name, const emscripten::val& bytes, double maxVertices);
+// The same (maxVertices 0: the CLI's limit), and with withArrays each part also carries its arrays in the file's vertex order:
+// positions (Float32Array), indices (Uint32Array), normals? , colors? (RGBA), attributes (name ->
+// Float32Array of dim per vertex) and transforms (Float64Array, 16 per instance, column-major).
+emscripten::val readFileWithArrays(const std::string& name, const emscripten::val& bytes, double maxVertices, bool withArrays);
 // The same with the CLI's default limit (ReadOptions::maxVertices).
 emscripten::val readFileWithDefaultLimit(const std::string& name, const emscripten::val& bytes);
 

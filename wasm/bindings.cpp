@@ -16,6 +16,7 @@ EMSCRIPTEN_BINDINGS(geoshift) {
   emscripten::function("preview", &geoshift::wasm::previewWithoutProgress);
   emscripten::function("readFile", &geoshift::wasm::readFile);
   emscripten::function("readFile", &geoshift::wasm::readFileWithDefaultLimit);
+  emscripten::function("readFile", &geoshift::wasm::readFileWithArrays);
   emscripten::function("ops", &geoshift::wasm::listOps);
   emscripten::function("presets", &geoshift::wasm::listPresets);
 }
