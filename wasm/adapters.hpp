@@ -1,7 +1,7 @@
 #pragma once
 // Adapters between JS values and the core: typed arrays are copied in once and out once, and every
 // failure comes back as a value ({ ok: false, error }) instead of a C++ exception, so the JS side
-// never needs exception support or `delete()` calls. Types are declared in geoshift.d.ts.
+// never needs exception support or `delete()` calls. Types are declared in package/src/module.ts.
 #include <string>
 
 #include <emscripten/val.h>

@@ -1,5 +1,5 @@
 // Registrations only; the adapters that turn typed arrays into core calls live in adapters.cpp and
-// api.cpp, the ops in ops_*.cpp, and the TypeScript view of these exports is geoshift.d.ts.
+// api.cpp, the ops in ops_*.cpp, and the TypeScript view of these exports is package/src/module.ts.
 #include <emscripten/bind.h>
 
 #include "adapters.hpp"

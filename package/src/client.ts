@@ -10,7 +10,7 @@
 
 import { GeoshiftError } from './errors.js';
 import { isResponse, type Init, type Request, type Response } from './protocol.js';
-import type { CorePreset } from './module.js';
+import type { CorePreset } from './reports.js';
 
 /** A started worker, whatever the platform (platform-browser.ts, platform-node.ts). */
 export interface WorkerPort {

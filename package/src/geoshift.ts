@@ -10,7 +10,10 @@ import { arraysOf, transferables, type LoadInfo, type Params, type Response, typ
 import type { CallOptions, CreateOptions, GeoshiftInfo, GeoshiftMesh, Mesh, MeshResult, MeshUpdate, ReadOptions, ReadPart, ReadResult } from './types.js';
 import { version } from './version.js';
 
-/** What differs between browsers and Node (platform-browser.ts, platform-node.ts). */
+/**
+ * What differs between browsers and Node (platform-browser.ts, platform-node.ts).
+ * @internal
+ */
 export interface Platform {
   /** Whether SharedArrayBuffer (and so the threaded build) is usable. */
   sharedMemory(): boolean;
@@ -95,7 +98,10 @@ function fileUrl(value: string | URL | undefined, file: string): string | undefi
   return String(value);
 }
 
-/** Starts the worker on `platform`; the entries' createGeoshift. */
+/**
+ * Starts the worker on `platform`; the entries' createGeoshift.
+ * @internal
+ */
 export async function create(platform: Platform, options: CreateOptions = {}): Promise<Geoshift> {
   check(typeof options === 'object' && options !== null, 'createGeoshift: options must be an object');
   const { threads = 'auto', locateFile, maxMemoryMB = 0 } = options;

@@ -3,7 +3,8 @@
 // try/catch like any JS API.
 
 import { GeoshiftError, type GeoshiftErrorKind } from './errors.js';
-import type { CorePreset, Failure, GeoshiftModule, RunSuccess } from './module.js';
+import type { Failure, GeoshiftModule, RunSuccess } from './module.js';
+import type { CorePreset } from './reports.js';
 import type { LoadInfo, MeshArrays, Params, ReadInfo, RunOutput } from './protocol.js';
 
 function fail(failure: Failure): never {

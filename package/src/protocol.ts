@@ -4,7 +4,7 @@
 // both directions, never structured-cloned. docs/architecture.md#worker-protocol.
 
 import type { GeoshiftErrorKind } from './errors.js';
-import type { BuildReport, CorePreset, FilePart, FilePartArrays, RunStats } from './module.js';
+import type { BuildReport, CorePreset, FilePart, FilePartArrays, RunStats } from './reports.js';
 
 /** A mesh as it crosses to the worker: the caller's vertex layout, checked by mesh.ts. */
 export interface MeshArrays {

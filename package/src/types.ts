@@ -1,10 +1,10 @@
 // The package's public data types: what goes in (a mesh, call options) and what comes out.
 
-import type { BuildReport, CorePreset, RunStats } from './module.js';
+import type { BuildReport, CorePreset, RunStats } from './reports.js';
 import type { OpName, OpOptions } from './options.js';
 import type { LoadInfo } from './protocol.js';
 
-export type { BuildReport, CorePreset, DenoiseDefaults, FilterPreset, RunStats } from './module.js';
+export type { BuildReport, CorePreset, DenoiseDefaults, FilterPreset, RunStats } from './reports.js';
 export type { LoadInfo } from './protocol.js';
 
 /**

@@ -1,5 +1,5 @@
-// The op table of wasm/ops.cpp (what the module accepts) and OpParams of wasm/geoshift.d.ts (what
-// TypeScript callers may send) name the same ops with the same parameters. Read from the sources,
+// The op table of wasm/ops.cpp (what the module accepts) and optionNames of package/src/options.ts
+// (what TypeScript callers of the package may send) name the same ops with the same parameters. Read from the sources,
 // so that any op added or changed on one side only fails here.
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
@@ -18,37 +18,36 @@ function tableParams(cpp) {
   return ops;
 }
 
-/** op -> sorted parameter names, from the members `name: { a?: ...; b?: ... };` of OpParams. */
-function declaredParams(dts) {
-  const start = dts.indexOf('export interface OpParams {');
-  const body = dts.slice(start, dts.indexOf('\n}\n', start));
-  const withoutComments = body.replace(/\/\*[\s\S]*?\*\//g, '').replace(/\/\/.*$/gm, '');
+/** op -> sorted parameter names, from the entries `name: ['a', 'b', ...],` of optionNames. */
+function declaredParams(ts) {
+  const start = ts.indexOf('export const optionNames');
+  const body = ts.slice(ts.indexOf('= {', start), ts.indexOf('\n};', start));
   const ops = new Map();
-  for (const m of withoutComments.matchAll(/^\s*(\w+)\s*:\s*\{([^}]*)\}\s*;/gm)) {
-    ops.set(m[1], [...m[2].matchAll(/(\w+)\??\s*:/g)].map((p) => p[1]).sort());
+  for (const m of body.matchAll(/^\s*(\w+)\s*:\s*\[([^\]]*)\]/gm)) {
+    ops.set(m[1], [...m[2].matchAll(/'(\w+)'/g)].map((p) => p[1]).sort());
   }
   return ops;
 }
 
 test('the parsers read something (a change of layout must not make the comparison empty)', () => {
   const table = tableParams(source('wasm/ops.cpp'));
-  const declared = declaredParams(source('wasm/geoshift.d.ts'));
+  const declared = declaredParams(source('package/src/options.ts'));
   assert.ok(table.size >= 5, `ops.cpp: ${[...table.keys()]}`);
-  assert.ok(declared.size >= 5, `geoshift.d.ts: ${[...declared.keys()]}`);
+  assert.ok(declared.size >= 5, `options.ts: ${[...declared.keys()]}`);
   assert.ok(table.get('filter')?.includes('signal'), 'ops.cpp filter params');
-  assert.ok(declared.get('filter')?.includes('signal'), 'geoshift.d.ts filter params');
+  assert.ok(declared.get('filter')?.includes('signal'), 'options.ts filter params');
 });
 
-test('every op of wasm/ops.cpp is declared in wasm/geoshift.d.ts with the same parameter names', () => {
+test('every op of wasm/ops.cpp is declared in package/src/options.ts with the same parameter names', () => {
   const table = tableParams(source('wasm/ops.cpp'));
-  const declared = declaredParams(source('wasm/geoshift.d.ts'));
+  const declared = declaredParams(source('package/src/options.ts'));
   assert.deepEqual([...declared.keys()].sort(), [...table.keys()].sort(), 'ops');
   for (const [op, params] of table) {
-    assert.deepEqual(declared.get(op), params, `parameters of op "${op}" (ops.cpp vs geoshift.d.ts)`);
+    assert.deepEqual(declared.get(op), params, `parameters of op "${op}" (ops.cpp vs options.ts)`);
   }
 });
 
 test('the comparison sees a difference (a parameter on one side only)', () => {
   const cpp = source('wasm/ops.cpp').replace('{"kind"}', '{"kind", "extra"}');
-  assert.notDeepEqual(tableParams(cpp).get('curvature'), declaredParams(source('wasm/geoshift.d.ts')).get('curvature'));
+  assert.notDeepEqual(tableParams(cpp).get('curvature'), declaredParams(source('package/src/options.ts')).get('curvature'));
 });

@@ -1,0 +1,186 @@
+// The npm package as its users meet it: packed with `npm pack`, installed offline into a fresh
+// project outside the repository (three and the type packages from the npm cache that the
+// bootstrap's `npm ci` filled), type-checked against the packed declarations (mistakes in options
+// must not compile), run under Node, and bundled with Vite into a page that denoises a three.js
+// BufferGeometry in Chromium, cross-origin isolated (threads) and not (one thread). Results are
+// compared with the native CLI's on the same input (1e-5, as the other parity tests).
+//
+//   node --test tests/package/       (needs the wasm build, package/dist and the native CLI)
+import { execFileSync, spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { gzipSync } from 'node:zlib';
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { chromium } from 'playwright-core';
+import { build, preview } from 'vite';
+
+import { CHROMIUM } from '../e2e/harness.mjs';
+import { repoRoot } from '../wasm/support.mjs';
+import { assertClose, box, jiggle, runNative, writeCoff } from '../wasm/filter-support.mjs';
+
+const userDir = path.join(repoRoot, 'tests/package/user');
+const tsc = path.join(repoRoot, 'node_modules/typescript/bin/tsc');
+const version = (name) => JSON.parse(fs.readFileSync(path.join(repoRoot, 'node_modules', name, 'package.json'), 'utf8')).version;
+
+const noisy = jiggle(box(6), 0.06);
+let dir;          // the user's project
+let tarball;
+let packed;       // npm pack's report: files and sizes
+let cli;          // the native CLI's positions: { default, taubin }
+let browser;
+
+function run(command, args, options = {}) {
+  const r = spawnSync(command, args, { encoding: 'utf8', ...options });
+  if (r.status !== 0) throw new Error(`${command} ${args.join(' ')} failed (${r.status}):\n${r.stdout}\n${r.stderr}`);
+  return r.stdout;
+}
+
+before(async () => {
+  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-user-'));
+  // The tarball of package/ as built by package/scripts/build.mjs (scripts/bootstrap.sh runs it).
+  assert.ok(fs.existsSync(path.join(repoRoot, 'package/dist/wasm/geoshift_web.wasm')), 'package/dist is not built: run scripts/bootstrap.sh');
+  [packed] = JSON.parse(run('npm', ['pack', '--json', '--pack-destination', dir, '--loglevel=error'], { cwd: path.join(repoRoot, 'package') }));
+  tarball = path.join(dir, packed.filename);
+
+  fs.cpSync(userDir, dir, { recursive: true });
+  fs.writeFileSync(path.join(dir, 'package.json'), JSON.stringify({ name: 'geoshift-user', private: true, type: 'module' }, null, 2));
+  run('npm', ['install', '--offline', '--no-audit', '--no-fund', '--loglevel=error', tarball,
+    `three@${version('three')}`, `@types/three@${version('@types/three')}`, `@types/node@${version('@types/node')}`], { cwd: dir });
+
+  const off = path.join(dir, 'box.off');
+  writeCoff(off, noisy);
+  cli = {
+    default: runNative(dir, 'denoise', off, [])('POSITION'),
+    taubin: runNative(dir, 'denoise', off, ['--method', 'taubin', '--taubin-iterations', '4'])('POSITION'),
+  };
+  browser = await chromium.launch(CHROMIUM);
+});
+
+after(async () => {
+  await browser?.close();
+  if (dir) fs.rmSync(dir, { recursive: true, force: true });
+});
+
+test('the tarball holds the entries, both wasm flavours, the declarations, README and license, and nothing else', (t) => {
+  const files = packed.files.map((f) => f.path).sort();
+  for (const f of ['package.json', 'README.md', 'LICENSE', 'THIRD_PARTY_NOTICES.md', 'dist/index.js', 'dist/index.d.ts', 'dist/node.js', 'dist/three.js',
+    'dist/three.d.ts', 'dist/worker.js', 'dist/node-worker.js', 'dist/wasm/geoshift_web.js', 'dist/wasm/geoshift_web.wasm',
+    'dist/wasm/geoshift_web_mt.js', 'dist/wasm/geoshift_web_mt.wasm', 'dist/wasm/geoshift_web_mt.worker.js', 'dist/wasm/geoshift_web_mt.worker.cjs']) {
+    assert.ok(files.includes(f), `${f} is not in the tarball`);
+  }
+  assert.deepEqual(files.filter((f) => !/^(package\.json|README\.md|LICENSE|THIRD_PARTY_NOTICES\.md|dist\/.*\.(js|cjs|d\.ts|wasm))$/.test(f)), [], 'unexpected files');
+  assert.equal(packed.version, JSON.parse(fs.readFileSync(path.join(repoRoot, 'package/package.json'), 'utf8')).version);
+  const gz = (f) => gzipSync(fs.readFileSync(path.join(repoRoot, 'package', f))).length;
+  const js = files.filter((f) => /^dist\/.*\.(js|cjs)$/.test(f));
+  t.diagnostic(`tarball ${(packed.size / 1024).toFixed(0)} KB (unpacked ${(packed.unpackedSize / 1024).toFixed(0)} KB, ${files.length} files); ` +
+    `gzipped: single-threaded wasm ${(gz('dist/wasm/geoshift_web.wasm') / 1024).toFixed(0)} KB + its glue ${(gz('dist/wasm/geoshift_web.js') / 1024).toFixed(0)} KB, ` +
+    `threaded wasm ${(gz('dist/wasm/geoshift_web_mt.wasm') / 1024).toFixed(0)} KB, all JS ${(js.reduce((s, f) => s + gz(f), 0) / 1024).toFixed(0)} KB`);
+});
+
+/** tsc's errors as { file, line, code }. */
+function typeErrors(output) {
+  return [...output.matchAll(/^(.+?)\((\d+),\d+\): error (TS\d+)/gm)].map((m) => ({ file: path.basename(m[1]), line: Number(m[2]), code: m[3] }));
+}
+
+test('a Node program and a page type-check against the packed declarations', () => {
+  run(process.execPath, [tsc, '-p', path.join(dir, 'tsconfig.json')]);
+  run(process.execPath, [tsc, '-p', path.join(dir, 'tsconfig.page.json')]);
+});
+
+test('wrong option names and types, and a call the API does not have, fail to compile where they are written', () => {
+  const source = fs.readFileSync(path.join(dir, 'bad-options.ts'), 'utf8').split('\n');
+  const expected = source.flatMap((line, i) => {
+    const m = line.match(/\/\/ @error (TS\d+)/);
+    return m ? [{ file: 'bad-options.ts', line: i + 1, code: m[1] }] : [];
+  });
+  assert.ok(expected.length >= 6, 'the file names the errors it expects');
+  const r = spawnSync(process.execPath, [tsc, '-p', path.join(dir, 'tsconfig.bad.json')], { encoding: 'utf8' });
+  assert.notEqual(r.status, 0, 'bad-options.ts compiled');
+  assert.deepEqual(typeErrors(r.stdout), expected, r.stdout);
+});
+
+test('under Node: read, denoise with progress, cancel, errors; the CLI\'s numbers, and the same bits with one thread', (t) => {
+  const program = path.join(dir, 'out/node/denoise.js');
+  const runs = ['auto', '1'].map((threads) => JSON.parse(execFileSync(process.execPath, [program, path.join(dir, 'box.off'), ...(threads === 'auto' ? [] : [threads])], { encoding: 'utf8' })));
+  const [threaded, single] = runs;
+  t.diagnostic(`Node: ${JSON.stringify(threaded.info.threaded)} threaded with ${threaded.info.threads} threads; denoise stages: ${threaded.stages.join(', ')}`);
+  assert.equal(single.info.threaded, false);
+  assert.equal(single.info.threads, 1);
+  assert.equal(threaded.info.threaded, os.availableParallelism() > 1);
+  assert.equal(threaded.info.version, packed.version);
+  assert.ok(threaded.info.ops.includes('denoise'));
+  for (const r of runs) {
+    assertClose(assert, Float32Array.from(r.positions), cli.default, 'denoise positions (Node vs CLI)');
+    assertClose(assert, Float32Array.from(r.taubin), cli.taubin, 'taubin positions (Node vs CLI)');
+    assert.ok(r.stages.length >= 2, `stages: ${r.stages}`);
+    assert.equal(r.inputUnchanged, true);
+    assert.equal(r.cancel.kind, 'cancelled');
+    assert.deepEqual(r.afterCancel, ['_CURVATURE']);
+    assert.equal(r.badIndex.kind, 'input');
+    assert.match(r.badIndex.message, /face 0.*100000/);
+    assert.equal(r.badOption.kind, 'input');
+    assert.match(r.badOption.message, /unknown parameter "iteratons"/);
+  }
+  assert.deepEqual(single.positions, threaded.positions, 'threads changed the result');
+});
+
+/** Builds the page with Vite from the installed package; returns the output directory. */
+let bundled;
+async function bundle() {
+  bundled ??= (async () => {
+    const outDir = path.join(dir, 'dist');
+    await build({ root: path.join(dir, 'page'), configFile: false, logLevel: 'warn', build: { outDir, emptyOutDir: true } });
+    return outDir;
+  })();
+  return bundled;
+}
+
+async function openPage(isolated) {
+  const outDir = await bundle();
+  const headers = isolated ? { 'Cross-Origin-Opener-Policy': 'same-origin', 'Cross-Origin-Embedder-Policy': 'require-corp' } : {};
+  const server = await preview({ root: path.join(dir, 'page'), configFile: false, logLevel: 'warn', build: { outDir }, preview: { host: '127.0.0.1', port: 0, strictPort: true, headers } });
+  const page = await browser.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
+  await page.goto(`http://127.0.0.1:${server.httpServer.address().port}/`);
+  await page.waitForFunction(() => document.getElementById('state')?.textContent === 'ready');
+  return { page, errors, close: async () => { await page.close(); await server.close(); } };
+}
+
+for (const isolated of [true, false]) {
+  test(`a Vite page ${isolated ? 'cross-origin isolated (threads)' : 'without isolation (one thread)'}: denoiseGeometry with progress, cancel, bad input`, async (t) => {
+    const { page, errors, close } = await openPage(isolated);
+    try {
+      const info = await page.evaluate((threads) => window.userTest.start(threads), isolated ? 2 : 'auto');
+      assert.equal(info.threaded, isolated);
+      assert.equal(info.threads, isolated ? 2 : 1);
+      if (!isolated) assert.match(info.note ?? '', /cross-origin isolated/);
+
+      const positions = Array.from(noisy.positions);
+      const indices = Array.from(noisy.indices);
+      const r = await page.evaluate(([p, i]) => window.userTest.denoise(p, i), [positions, indices]);
+      assertClose(assert, Float32Array.from(r.positions), cli.default, 'denoised geometry (Chromium vs CLI)');
+      assert.ok(r.progress.length >= 2 && r.progress.every(([f, s]) => f >= 0 && f <= 1 && typeof s === 'string' && s), JSON.stringify(r.progress.slice(0, 5)));
+      assert.equal(r.normals, positions.length / 3, 'normals recomputed');
+      assert.ok(r.uvKept && r.groupsKept && r.inputUnchanged, JSON.stringify(r));
+
+      const c = await page.evaluate(([p, i]) => window.userTest.cancel(p, i), [positions, indices]);
+      t.diagnostic(`cancel took ${c.ms.toFixed(0)} ms`);
+      assert.deepEqual(c.cancelled, { kind: 'cancelled', message: 'cancelled' });
+      assert.deepEqual(c.after, { kind: 'none', message: '' });
+
+      const bad = await page.evaluate((p) => window.userTest.badInput(p), positions);
+      assert.equal(bad.badIndex.kind, 'input');
+      assert.match(bad.badIndex.message, /face 0.*7000000/);
+      assert.equal(bad.badValue.kind, 'input');
+      assert.match(bad.badValue.message, /iterations/);
+      assert.deepEqual(bad.notAnArray, { kind: 'input', message: 'mesh.positions must be a Float32Array (got Array)' });
+      assert.deepEqual(errors, []);
+    } finally {
+      await close();
+    }
+  });
+}
