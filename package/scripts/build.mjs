@@ -12,8 +12,8 @@ const repoRoot = path.resolve(packageDir, '..');
 const wasmDir = path.resolve(process.env.GEOSHIFT_WASM_DIR ?? path.join(repoRoot, 'build/wasm-release/wasm'));
 const dist = path.join(packageDir, 'dist');
 
-// The flavours the package ships; the threaded one's pthread script also as .cjs for Node
-// (src/node-worker.ts says why).
+// The flavours the package ships; the threaded one's pthread script goes in as .cjs for Node
+// (src/node-worker.ts says why) and as text for browsers (src/worker.ts).
 const FILES = ['geoshift_web.js', 'geoshift_web.wasm', 'geoshift_web_mt.js', 'geoshift_web_mt.wasm', 'geoshift_web_mt.worker.js'];
 
 function fail(message) {
@@ -36,6 +36,10 @@ try {
   fail('tsc failed');
 }
 fs.mkdirSync(path.join(dist, 'wasm'));
-for (const file of FILES) fs.copyFileSync(path.join(wasmDir, file), path.join(dist, 'wasm', file));
+for (const file of FILES.filter((f) => !f.endsWith('.worker.js'))) fs.copyFileSync(path.join(wasmDir, file), path.join(dist, 'wasm', file));
+// Node starts the pthread workers from a file, with worker_threads: a CommonJS copy (src/node-worker.ts).
 fs.copyFileSync(path.join(wasmDir, 'geoshift_web_mt.worker.js'), path.join(dist, 'wasm', 'geoshift_web_mt.worker.cjs'));
+// Browsers start them from a blob of this text (src/worker.ts).
+const pthread = fs.readFileSync(path.join(wasmDir, 'geoshift_web_mt.worker.js'), 'utf8');
+fs.writeFileSync(path.join(dist, 'pthread-worker.js'), `// geoshift_web_mt.worker.js of the wasm build, as text (src/worker.ts says why).\nexport default ${JSON.stringify(pthread)};\n`);
 console.log(`package/dist: geoshift ${version} built (wasm from ${path.relative(repoRoot, wasmDir) || wasmDir})`);

@@ -195,6 +195,8 @@ export class Client {
         if (data.type === 'ready') {
           up = true;
           settle.resolve({ threaded: data.threaded, threads: data.threads, ops: data.ops, presets: data.presets });
+          // Idle from now on unless a call is queued (Node: the process may exit).
+          if (!this.running && this.queue.length === 0) this.worker.busy?.(false);
         } else if (data.type === 'fatal') this.fail(new GeoshiftError(data.message, 'internal'), settle.reject);
         else this.receive(data);
       },

@@ -26,7 +26,7 @@ export interface Platform {
 /** The module's files by flavour (wasm/CMakeLists.txt). */
 const FILES = {
   single: ['geoshift_web.js', 'geoshift_web.wasm'],
-  threaded: ['geoshift_web_mt.js', 'geoshift_web_mt.wasm', 'geoshift_web_mt.worker.js'],
+  threaded: ['geoshift_web_mt.js', 'geoshift_web_mt.wasm'],
 };
 
 /** Threads of threads: 'auto': one per core up to this many (each pool worker instantiates the module). */

@@ -1,5 +1,6 @@
 // Node: the worker is a worker_threads thread running node-worker.js. It keeps the process alive
-// only while a call is pending, so a script that forgets terminate() still exits.
+// while it starts and while a call is pending (client.ts says when), so a script that forgets
+// terminate() still exits.
 
 import os from 'node:os';
 import { Worker } from 'node:worker_threads';
@@ -18,7 +19,6 @@ export const node: Platform = {
     worker.on('exit', (code: number) => {
       if (!ended) events.error(`the worker thread exited (code ${code})`);
     });
-    worker.unref();
     return {
       postMessage: (message, transfer = []) => worker.postMessage(message, transfer as never),
       terminate: () => {

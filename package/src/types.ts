@@ -81,10 +81,10 @@ export interface CreateOptions {
    */
   threads?: 'auto' | number;
   /**
-   * Where the module's files are, for a CDN or a server path of your choice: called with each file
-   * name (geoshift_web.js, geoshift_web.wasm, geoshift_web_mt.js, geoshift_web_mt.wasm,
-   * geoshift_web_mt.worker.js); return its URL (under Node: a path or file: URL), or undefined for
-   * the default, beside the package's own files.
+   * Where the module's files are, for a CDN or a server path of your choice: called with the name
+   * of each file the build needs (geoshift_web.js and geoshift_web.wasm, or geoshift_web_mt.js and
+   * geoshift_web_mt.wasm); return its URL (under Node: a path or file: URL), or undefined for the
+   * default, beside the package's own files.
    */
   locateFile?: (file: string) => string | URL | undefined;
   /**

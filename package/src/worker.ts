@@ -4,6 +4,7 @@
 
 import type { ModuleFactory, ModuleOptions } from './module.js';
 import { serve, type FlavourName } from './host.js';
+import pthreadSource from './pthread-worker.js';
 import type { Init, Response } from './protocol.js';
 
 // The DOM library is what the package compiles with; this is the part of the worker scope used.
@@ -24,8 +25,6 @@ function beside(name: string): string | undefined {
       return new URL('./wasm/geoshift_web_mt.js', import.meta.url).href;
     case 'geoshift_web_mt.wasm':
       return new URL('./wasm/geoshift_web_mt.wasm', import.meta.url).href;
-    case 'geoshift_web_mt.worker.js':
-      return new URL('./wasm/geoshift_web_mt.worker.js', import.meta.url).href;
     default:
       return undefined;
   }
@@ -42,8 +41,16 @@ async function load(name: FlavourName, init: Init): Promise<{ factory: ModuleFac
   const js = url(`${name}.js`);
   const factory = ((await import(/* @vite-ignore */ /* webpackIgnore: true */ js)) as { default: ModuleFactory }).default;
   const options: ModuleOptions = { locateFile: (file: string) => url(file) };
-  // The pthread workers import the module script themselves; they need its URL, not this file's.
-  if (init.threaded) options.mainScriptUrlOrBlob = js;
+  if (init.threaded) {
+    // The pthread workers import the module script themselves; they need its URL, not this file's.
+    options.mainScriptUrlOrBlob = js;
+    // Their own script (3 KB) is started from a blob: a bundler would inline a file that small as
+    // a data: URL (Vite below 4 KB), whose worker has an opaque origin and cannot share the
+    // memory, and Vite's dev server would rewrite its dynamic import() for modules, which a
+    // classic worker script cannot hold.
+    const pthread = URL.createObjectURL(new Blob([pthreadSource], { type: 'text/javascript' }));
+    options.locateFile = (file: string) => (file.endsWith('.worker.js') ? pthread : url(file));
+  }
   return { factory, options };
 }
 

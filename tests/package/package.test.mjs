@@ -22,7 +22,6 @@ import { assertClose, box, jiggle, runNative, writeCoff } from '../wasm/filter-s
 
 const userDir = path.join(repoRoot, 'tests/package/user');
 const tsc = path.join(repoRoot, 'node_modules/typescript/bin/tsc');
-const version = (name) => JSON.parse(fs.readFileSync(path.join(repoRoot, 'node_modules', name, 'package.json'), 'utf8')).version;
 
 const noisy = jiggle(box(6), 0.06);
 let dir;          // the user's project
@@ -30,6 +29,53 @@ let tarball;
 let packed;       // npm pack's report: files and sizes
 let cli;          // the native CLI's positions: { default, taubin }
 let browser;
+
+/**
+ * package.json and package-lock.json of a user's project that depends on the tarball and on
+ * `others` at the versions of the repository's lock, with their dependencies: `npm ci --offline`
+ * then takes every tarball from the npm cache, which the bootstrap's `npm ci` filled (a plain
+ * `npm install three --offline` would need the registry's package metadata, which npm ci does not
+ * cache).
+ */
+function userProject(into, pack, others) {
+  const lock = JSON.parse(fs.readFileSync(path.join(repoRoot, 'package-lock.json'), 'utf8')).packages;
+  const packages = {};
+  // Node's lookup: the dependency beside the dependent, else in each enclosing node_modules.
+  const resolve = (from, name) => {
+    for (let at = from; ; at = at.slice(0, at.lastIndexOf('/node_modules/'))) {
+      const candidate = `${at ? `${at}/` : ''}node_modules/${name}`;
+      if (lock[candidate]) return candidate;
+      if (!at.includes('/node_modules/')) {
+        if (at === '') throw new Error(`package-lock.json has no ${name} (needed by ${from || 'the project'})`);
+        at = '';
+        if (lock[`node_modules/${name}`]) return `node_modules/${name}`;
+        throw new Error(`package-lock.json has no ${name} (needed by ${from})`);
+      }
+    }
+  };
+  const add = (where) => {
+    if (packages[where]) return;
+    const { dev, devOptional, peer, optional, ...entry } = lock[where];
+    packages[where] = entry;
+    for (const name of Object.keys(entry.dependencies ?? {})) add(resolve(where, name));
+  };
+  const dependencies = { geoshift: `file:${pack.filename}` };
+  for (const name of others) {
+    add(`node_modules/${name}`);
+    dependencies[name] = lock[`node_modules/${name}`].version;
+  }
+  const manifest = JSON.parse(fs.readFileSync(path.join(repoRoot, 'package/package.json'), 'utf8'));
+  packages['node_modules/geoshift'] = {
+    version: pack.version, resolved: `file:${pack.filename}`, integrity: pack.integrity, license: manifest.license,
+    engines: manifest.engines, peerDependencies: manifest.peerDependencies, peerDependenciesMeta: manifest.peerDependenciesMeta,
+  };
+  const project = { name: 'geoshift-user', version: '1.0.0', private: true, type: 'module', dependencies };
+  fs.writeFileSync(path.join(into, 'package.json'), JSON.stringify(project, null, 2));
+  fs.writeFileSync(path.join(into, 'package-lock.json'), JSON.stringify({
+    name: project.name, version: project.version, lockfileVersion: 3, requires: true,
+    packages: { '': { name: project.name, version: project.version, dependencies }, ...packages },
+  }, null, 2));
+}
 
 function run(command, args, options = {}) {
   const r = spawnSync(command, args, { encoding: 'utf8', ...options });
@@ -45,9 +91,8 @@ before(async () => {
   tarball = path.join(dir, packed.filename);
 
   fs.cpSync(userDir, dir, { recursive: true });
-  fs.writeFileSync(path.join(dir, 'package.json'), JSON.stringify({ name: 'geoshift-user', private: true, type: 'module' }, null, 2));
-  run('npm', ['install', '--offline', '--no-audit', '--no-fund', '--loglevel=error', tarball,
-    `three@${version('three')}`, `@types/three@${version('@types/three')}`, `@types/node@${version('@types/node')}`], { cwd: dir });
+  userProject(dir, packed, ['three', '@types/three', '@types/node']);
+  run('npm', ['ci', '--offline', '--no-audit', '--no-fund', '--loglevel=error'], { cwd: dir });
 
   const off = path.join(dir, 'box.off');
   writeCoff(off, noisy);
@@ -67,7 +112,7 @@ test('the tarball holds the entries, both wasm flavours, the declarations, READM
   const files = packed.files.map((f) => f.path).sort();
   for (const f of ['package.json', 'README.md', 'LICENSE', 'THIRD_PARTY_NOTICES.md', 'dist/index.js', 'dist/index.d.ts', 'dist/node.js', 'dist/three.js',
     'dist/three.d.ts', 'dist/worker.js', 'dist/node-worker.js', 'dist/wasm/geoshift_web.js', 'dist/wasm/geoshift_web.wasm',
-    'dist/wasm/geoshift_web_mt.js', 'dist/wasm/geoshift_web_mt.wasm', 'dist/wasm/geoshift_web_mt.worker.js', 'dist/wasm/geoshift_web_mt.worker.cjs']) {
+    'dist/wasm/geoshift_web_mt.js', 'dist/wasm/geoshift_web_mt.wasm', 'dist/pthread-worker.js', 'dist/wasm/geoshift_web_mt.worker.cjs']) {
     assert.ok(files.includes(f), `${f} is not in the tarball`);
   }
   assert.deepEqual(files.filter((f) => !/^(package\.json|README\.md|LICENSE|THIRD_PARTY_NOTICES\.md|dist\/.*\.(js|cjs|d\.ts|wasm))$/.test(f)), [], 'unexpected files');
@@ -128,10 +173,16 @@ test('under Node: read, denoise with progress, cancel, errors; the CLI\'s number
 
 /** Builds the page with Vite from the installed package; returns the output directory. */
 let bundled;
+let bundledSizes;
 async function bundle() {
   bundled ??= (async () => {
     const outDir = path.join(dir, 'dist');
     await build({ root: path.join(dir, 'page'), configFile: false, logLevel: 'warn', build: { outDir, emptyOutDir: true } });
+    // What a page downloads, gzipped: its code, the package's worker and one flavour.
+    const assets = fs.readdirSync(path.join(outDir, 'assets'));
+    const gz = (re) => assets.filter((f) => re.test(f)).reduce((sum, f) => sum + gzipSync(fs.readFileSync(path.join(outDir, 'assets', f))).length, 0);
+    const code = gz(/^(index|worker)-.*\.js$/);
+    bundledSizes = { code, single: code + gz(/^geoshift_web-/), threaded: code + gz(/^geoshift_web_mt-/) };
     return outDir;
   })();
   return bundled;
@@ -155,9 +206,11 @@ for (const isolated of [true, false]) {
     const { page, errors, close } = await openPage(isolated);
     try {
       const info = await page.evaluate((threads) => window.userTest.start(threads), isolated ? 2 : 'auto');
+      const kb = (bytes) => `${(bytes / 1024).toFixed(0)} KB`;
+      t.diagnostic(`the page downloads ${kb(bundledSizes[isolated ? 'threaded' : 'single'])} gzipped (its code and the worker ${kb(bundledSizes.code)}, three included)`);
       assert.equal(info.threaded, isolated);
       assert.equal(info.threads, isolated ? 2 : 1);
-      if (!isolated) assert.match(info.note ?? '', /cross-origin isolated/);
+      if (!isolated) assert.match(info.note ?? '', /cross-origin-isolated/);
 
       const positions = Array.from(noisy.positions);
       const indices = Array.from(noisy.indices);
