@@ -3,3 +3,4 @@ export { GeoshiftError, type GeoshiftErrorKind } from './errors.js';
 export type { Geoshift } from './geoshift.js';
 export type * from './types.js';
 export type * from './options.js';
+export { coreNames } from './options.js';

@@ -5,7 +5,7 @@
 import { Client, type Ready, type Spawn } from './client.js';
 import { GeoshiftError } from './errors.js';
 import { meshArrays } from './mesh.js';
-import type { OpName, OpOptions, CurvatureOptions, DenoiseOptions, FilterOptions, GeodesicOptions, NoiseOptions, SmoothOptions, WaveletOptions } from './options.js';
+import { coreNames, type OpName, type OpOptions, type CurvatureOptions, type DenoiseOptions, type FilterOptions, type GeodesicOptions, type NoiseOptions, type SmoothOptions, type WaveletOptions } from './options.js';
 import { arraysOf, transferables, type LoadInfo, type Params, type Response, type RunOutput } from './protocol.js';
 import type { CallOptions, CreateOptions, GeoshiftInfo, GeoshiftMesh, Mesh, MeshResult, MeshUpdate, ReadOptions, ReadPart, ReadResult } from './types.js';
 import { version } from './version.js';
@@ -82,13 +82,17 @@ function check(condition: boolean, message: string): asserts condition {
   if (!condition) throw new GeoshiftError(message, 'input');
 }
 
-/** Splits call options from the op's parameters, checking the former. */
-function split<T extends CallOptions>(options: T | undefined, what: string): { params: Params; call: CallOptions } {
+/** Splits call options from the op's parameters (in the core's names), checking the former. */
+function split<T extends CallOptions>(options: T | undefined, what: string, op?: OpName): { params: Params; call: CallOptions } {
   if (options === undefined) return { params: {}, call: {} };
   check(typeof options === 'object' && options !== null && !Array.isArray(options), `${what}: options must be an object`);
-  const { onProgress, signal, ...params } = options;
+  const { onProgress, signal, ...given } = options;
   check(onProgress === undefined || typeof onProgress === 'function', `${what}: onProgress must be a function`);
-  check(signal === undefined || (typeof AbortSignal !== 'undefined' && signal instanceof AbortSignal), `${what}: signal must be an AbortSignal`);
+  const renamed = op ? coreNames[op] : undefined;
+  const hint = renamed && Object.values(renamed).includes('signal') ? ` (the values to filter are option ${Object.keys(renamed).find((k) => renamed[k] === 'signal')})` : '';
+  check(signal === undefined || (typeof AbortSignal !== 'undefined' && signal instanceof AbortSignal), `${what}: signal must be an AbortSignal${hint}`);
+  const params: Params = {};
+  for (const [name, value] of Object.entries(given)) params[renamed?.[name] ?? name] = value;
   return { params, call: { ...(onProgress ? { onProgress } : {}), ...(signal ? { signal } : {}) } };
 }
 
@@ -156,7 +160,7 @@ class GeoshiftWorker implements Geoshift {
   }
 
   private async job(op: OpName, mesh: Mesh, options: CallOptions | undefined): Promise<MeshResult> {
-    const { params, call } = split(options, op);
+    const { params, call } = split(options, op, op);
     const arrays = meshArrays(mesh);
     const response = await this.client.request({ type: 'job', op, params, ...arrays }, { ...call, transfer: transferables(arraysOf(arrays)) });
     const { output } = response as Extract<Response, { kind: 'job' }>;
@@ -213,13 +217,13 @@ class KeptMesh implements GeoshiftMesh {
   ) {}
 
   async run<Op extends OpName>(op: Op, options?: OpOptions[Op] & CallOptions): Promise<MeshUpdate> {
-    const { params, call } = split(options, op);
+    const { params, call } = split(options, op, op);
     const response = await this.client.request({ type: 'run', meshId: this.meshId, op, params }, { ...call, generation: this.generation });
     return update((response as Extract<Response, { kind: 'run' }>).output);
   }
 
   async preview<Op extends OpName>(op: Op, options: OpOptions[Op] & CallOptions & { maxVertices: number }): Promise<MeshUpdate> {
-    const { params, call } = split(options, op);
+    const { params, call } = split(options, op, op);
     const { maxVertices, ...opParams } = params;
     check(typeof maxVertices === 'number', `${op} preview: maxVertices must be a number`);
     const response = await this.client.request({ type: 'preview', meshId: this.meshId, op, params: opParams, maxVertices }, { ...call, generation: this.generation, soft: true });

@@ -22,7 +22,7 @@ export interface GeodesicOptions {
   radius?: number;
 }
 export interface FilterOptions {
-  signal?: string;
+  field?: string;
   mode?: 'ms' | 'bms';
   passes?: number;
   hs?: number;
@@ -89,7 +89,15 @@ export const optionNames: { readonly [Op in OpName]: ReadonlyArray<keyof OpOptio
   smooth: ['iterations', 'lambda', 'mu', 'weights'],
   curvature: ['kind'],
   geodesic: ['source', 'radius'],
-  filter: ['signal', 'mode', 'passes', 'hs', 'hr', 'radius', 'kmax', 'eps', 'rangeUpdate', 'segments', 'threads', 'levels', 'alpha', 'filterGeometry'],
+  filter: ['field', 'mode', 'passes', 'hs', 'hr', 'radius', 'kmax', 'eps', 'rangeUpdate', 'segments', 'threads', 'levels', 'alpha', 'filterGeometry'],
   denoise: ['method', 'preset', 'noise', 'strength', 'hs', 'hr', 'radius', 'kmax', 'eps', 'passes', 'rangeUpdate', 'faceNormals', 'threads', 'supportIterations', 'vertexIterations', 'normalIterations', 'sigmaC', 'sigmaS', 'neighbors', 'iterations', 'lambda', 'mu', 'levels', 'alpha'],
   wavelet: ['levels', 'alpha', 'positionsOnly'],
+};
+
+/**
+ * Options the package names differently from the core, by op: the core's `signal` of `filter` (the
+ * values filtered) is `field` here, because `signal` is every call's AbortSignal, as in fetch().
+ */
+export const coreNames: { readonly [Op in OpName]?: { readonly [name: string]: string } } = {
+  filter: { field: 'signal' },
 };

@@ -18,7 +18,7 @@ import { build, preview } from 'vite';
 
 import { CHROMIUM } from '../e2e/harness.mjs';
 import { repoRoot } from '../wasm/support.mjs';
-import { assertClose, box, jiggle, runNative, writeCoff } from '../wasm/filter-support.mjs';
+import { assertClose, box, jiggle, runNative, twoColorSphere, writeCoff } from '../wasm/filter-support.mjs';
 
 const userDir = path.join(repoRoot, 'tests/package/user');
 const tsc = path.join(repoRoot, 'node_modules/typescript/bin/tsc');
@@ -96,9 +96,11 @@ before(async () => {
 
   const off = path.join(dir, 'box.off');
   writeCoff(off, noisy);
+  writeCoff(path.join(dir, 'sphere.off'), twoColorSphere(3));
   cli = {
     default: runNative(dir, 'denoise', off, [])('POSITION'),
     taubin: runNative(dir, 'denoise', off, ['--method', 'taubin', '--taubin-iterations', '4'])('POSITION'),
+    colors: runNative(dir, 'filter', path.join(dir, 'sphere.off'), ['--signal', 'color', '--hr', '0.15'])('COLOR_0'),
   };
   browser = await chromium.launch(CHROMIUM);
 });
@@ -146,9 +148,10 @@ test('wrong option names and types, and a call the API does not have, fail to co
   assert.deepEqual(typeErrors(r.stdout), expected, r.stdout);
 });
 
-test('under Node: read, denoise with progress, cancel, errors; the CLI\'s numbers, and the same bits with one thread', (t) => {
+test('under Node: read, denoise with progress, filter colors, cancel, errors; the CLI\'s numbers, and the same bits with one thread', (t) => {
   const program = path.join(dir, 'out/node/denoise.js');
-  const runs = ['auto', '1'].map((threads) => JSON.parse(execFileSync(process.execPath, [program, path.join(dir, 'box.off'), ...(threads === 'auto' ? [] : [threads])], { encoding: 'utf8' })));
+  const runs = ['auto', '1'].map((threads) => JSON.parse(execFileSync(process.execPath,
+    [program, path.join(dir, 'box.off'), path.join(dir, 'sphere.off'), ...(threads === 'auto' ? [] : [threads])], { encoding: 'utf8' })));
   const [threaded, single] = runs;
   t.diagnostic(`Node: ${JSON.stringify(threaded.info.threaded)} threaded with ${threaded.info.threads} threads; denoise stages: ${threaded.stages.join(', ')}`);
   assert.equal(single.info.threaded, false);
@@ -159,6 +162,7 @@ test('under Node: read, denoise with progress, cancel, errors; the CLI\'s number
   for (const r of runs) {
     assertClose(assert, Float32Array.from(r.positions), cli.default, 'denoise positions (Node vs CLI)');
     assertClose(assert, Float32Array.from(r.taubin), cli.taubin, 'taubin positions (Node vs CLI)');
+    assertClose(assert, Float32Array.from(r.colors), cli.colors, 'filtered colors (Node vs CLI)');
     assert.ok(r.stages.length >= 2, `stages: ${r.stages}`);
     assert.equal(r.inputUnchanged, true);
     assert.equal(r.cancel.kind, 'cancelled');

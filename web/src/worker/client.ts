@@ -3,7 +3,7 @@
 // the open file, and one per preview session), has one run at a time and a Cancel button. Nothing
 // here talks to the worker or the module directly.
 
-import { createGeoshift, GeoshiftError, type Geoshift, type GeoshiftInfo, type GeoshiftMesh, type MeshUpdate, type OpName, type OpOptions, type ReadResult } from 'geoshift';
+import { coreNames, createGeoshift, GeoshiftError, type Geoshift, type GeoshiftInfo, type GeoshiftMesh, type MeshUpdate, type OpName, type OpOptions, type ReadResult } from 'geoshift';
 
 export { GeoshiftError };
 
@@ -87,9 +87,7 @@ export class WorkerClient {
     const mesh = await this.mesh(meshId);
     const controller = this.begin(false);
     try {
-      // The panel's parameters are the module's (presets.ts, from the core's presets); the core
-      // refuses a wrong name or value with a message naming it.
-      const options = { ...(params as OpOptions[OpName]), signal: controller.signal, ...(onProgress ? { onProgress } : {}) };
+      const options = { ...optionsOf(op, params), signal: controller.signal, ...(onProgress ? { onProgress } : {}) };
       return outputOf(await mesh.run(op as OpName, options));
     } finally {
       this.end(controller);
@@ -101,7 +99,7 @@ export class WorkerClient {
     const mesh = await this.mesh(meshId);
     const controller = this.begin(true);
     try {
-      return outputOf(await mesh.preview(op as OpName, { ...(params as OpOptions[OpName]), maxVertices, signal: controller.signal }));
+      return outputOf(await mesh.preview(op as OpName, { ...optionsOf(op, params), maxVertices, signal: controller.signal }));
     } finally {
       this.end(controller);
     }
@@ -139,6 +137,17 @@ export class WorkerClient {
   private end(controller: AbortController): void {
     if (this.current?.controller === controller) this.current = null;
   }
+}
+
+/**
+ * The panel's parameters (presets.ts) carry the core's names, as the CLI's options and the core's
+ * presets do; the package names a few differently (filter's signal is its field). The core refuses
+ * a wrong name or value with a message naming it.
+ */
+function optionsOf(op: string, params: Record<string, unknown>): OpOptions[OpName] {
+  const renamed = coreNames[op as OpName] ?? {};
+  const packageName = new Map(Object.entries(renamed).map(([name, core]) => [core, name]));
+  return Object.fromEntries(Object.entries(params).map(([name, value]) => [packageName.get(name) ?? name, value])) as OpOptions[OpName];
 }
 
 function outputOf(update: MeshUpdate): RunOutput {

@@ -1,11 +1,12 @@
 // A Node program written as a user of the package would write it, compiled against the packed
 // declarations: reads an OFF file with the core's readers, denoises it with progress, checks the
-// errors a user meets, and prints what it got as JSON (tests/package/package.test.mjs).
+// errors a user meets, filters the colors of another file, and prints what it got as JSON
+// (tests/package/package.test.mjs).
 import { readFileSync } from 'node:fs';
 import { createGeoshift, GeoshiftError, type GeoshiftErrorKind, type MeshResult } from 'geoshift';
 
-const [input, threads] = process.argv.slice(2);
-if (!input) throw new Error('usage: node denoise.js FILE.off [threads]');
+const [input, colored, threads] = process.argv.slice(2);
+if (!input || !colored) throw new Error('usage: node denoise.js FILE.off COLORED.off [threads]');
 
 async function kindOf(promise: Promise<unknown>): Promise<{ kind: GeoshiftErrorKind | 'none'; message: string }> {
   try {
@@ -32,12 +33,17 @@ try {
   const cancel = await cancelled;
   const after = await gs.curvature(mesh);
 
+  // Vertex colors (RGBA from the reader), filtered by the mean shift: RGB back.
+  const sphere = (await gs.read(readFileSync(colored), 'colored.off')).parts[0]!.mesh!;
+  const colors = await gs.filter(sphere, { field: 'color', hr: 0.15 });
+
   const badIndex = await kindOf(gs.denoise({ positions: mesh.positions, indices: new Uint32Array([0, 1, 100000]) }));
   const badOption = await kindOf(gs.smooth(mesh, JSON.parse('{ "iteratons": 3 }')));
   console.log(JSON.stringify({
     info: gs.info,
     positions: Array.from(result.positions),
     taubin: Array.from(taubin.positions),
+    colors: Array.from(colors.colors ?? []),
     stages: [...stages],
     stats: result.stats,
     inputUnchanged: mesh.positions.every((v, i) => v === file.parts[0]!.mesh!.positions[i]),
