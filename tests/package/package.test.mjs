@@ -181,6 +181,9 @@ let bundledSizes;
 async function bundle() {
   bundled ??= (async () => {
     const outDir = path.join(dir, 'dist');
+    // The single-threaded flavour also under /cdn/, where the page's locateFile points a second worker.
+    fs.mkdirSync(path.join(dir, 'page/public/cdn'), { recursive: true });
+    for (const f of ['geoshift_web.js', 'geoshift_web.wasm']) fs.copyFileSync(path.join(dir, 'node_modules/geoshift/dist/wasm', f), path.join(dir, 'page/public/cdn', f));
     await build({ root: path.join(dir, 'page'), configFile: false, logLevel: 'warn', build: { outDir, emptyOutDir: true } });
     // What a page downloads, gzipped: its code, the package's worker and one flavour.
     const assets = fs.readdirSync(path.join(outDir, 'assets'));
@@ -228,6 +231,14 @@ for (const isolated of [true, false]) {
       t.diagnostic(`cancel took ${c.ms.toFixed(0)} ms`);
       assert.deepEqual(c.cancelled, { kind: 'cancelled', message: 'cancelled' });
       assert.deepEqual(c.after, { kind: 'none', message: '' });
+
+      if (!isolated) {
+        const requested = [];
+        page.on('request', (request) => requested.push(new URL(request.url()).pathname));
+        const moved = await page.evaluate(([p, i]) => window.userTest.elsewhere(p, i), [positions, indices]);
+        assert.deepEqual(moved, { asked: ['geoshift_web.js', 'geoshift_web.wasm'], curvature: ['_CURVATURE'] });
+        assert.ok(requested.includes('/cdn/geoshift_web.js') && requested.includes('/cdn/geoshift_web.wasm'), `locateFile's URLs were not used: ${requested}`);
+      }
 
       const bad = await page.evaluate((p) => window.userTest.badInput(p), positions);
       assert.equal(bad.badIndex.kind, 'input');

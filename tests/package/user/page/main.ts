@@ -44,6 +44,18 @@ const userTest = {
     return this.gs.info;
   },
 
+  /** A second worker whose module files come from elsewhere (as from a CDN): /cdn/ on this server. */
+  async elsewhere(positions: number[], indices: number[]) {
+    const asked: string[] = [];
+    const gs = await createGeoshift({ threads: 1, locateFile: (file) => (asked.push(file), new URL(`/cdn/${file}`, location.href)) });
+    try {
+      const { attributes } = await gs.curvature({ positions: new Float32Array(positions), indices: new Uint32Array(indices) });
+      return { asked, curvature: Object.keys(attributes) };
+    } finally {
+      gs.terminate();
+    }
+  },
+
   async denoise(positions: number[], indices: number[]) {
     const gs = this.gs!;
     const geometry = geometryOf(positions, indices);
