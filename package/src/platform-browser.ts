@@ -16,7 +16,9 @@ export const browser: Platform = {
       // The package was imported from another origin (a CDN): a worker must be same-origin, but it
       // may import a module from anywhere, and then finds the wasm files beside that module.
       if (!(error instanceof DOMException && error.name === 'SecurityError')) throw error;
-      const source = `import ${JSON.stringify(new URL('./worker.js', import.meta.url).href)};`;
+      // Not the literal pattern again, or bundlers would copy worker.js a second time, unbundled.
+      const base = import.meta.url;
+      const source = `import ${JSON.stringify(new URL('./worker.js', base).href)};`;
       worker = new Worker(URL.createObjectURL(new Blob([source], { type: 'text/javascript' })), { type: 'module' });
     }
     worker.onmessage = (event: MessageEvent) => events.message(event.data);

@@ -14,7 +14,7 @@ import { gzipSync } from 'node:zlib';
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { chromium } from 'playwright-core';
-import { build, preview } from 'vite';
+import { build, createServer, preview } from 'vite';
 
 import { CHROMIUM } from '../e2e/harness.mjs';
 import { repoRoot } from '../wasm/support.mjs';
@@ -195,10 +195,17 @@ async function bundle() {
   return bundled;
 }
 
-async function openPage(isolated) {
-  const outDir = await bundle();
-  const headers = isolated ? { 'Cross-Origin-Opener-Policy': 'same-origin', 'Cross-Origin-Embedder-Policy': 'require-corp' } : {};
-  const server = await preview({ root: path.join(dir, 'page'), configFile: false, logLevel: 'warn', build: { outDir }, preview: { host: '127.0.0.1', port: 0, strictPort: true, headers } });
+const ISOLATION = { 'Cross-Origin-Opener-Policy': 'same-origin', 'Cross-Origin-Embedder-Policy': 'require-corp' };
+
+/** The page as `vite preview` serves the bundle (with or without isolation), or from Vite's dev server. */
+async function openPage(isolated, dev = false) {
+  const headers = isolated ? ISOLATION : {};
+  const listen = { host: '127.0.0.1', port: 0, strictPort: true, headers };
+  const root = path.join(dir, 'page');
+  const server = dev
+    ? await createServer({ root, configFile: false, logLevel: 'warn', server: { ...listen, hmr: false, watch: null } })
+    : await preview({ root, configFile: false, logLevel: 'warn', build: { outDir: await bundle() }, preview: listen });
+  if (dev) await server.listen();
   const page = await browser.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(e.message));
@@ -252,3 +259,15 @@ for (const isolated of [true, false]) {
     }
   });
 }
+
+test('the Vite dev server serves the installed package as it is (pre-bundled by Vite), threads and all', async () => {
+  const { page, errors, close } = await openPage(true, true);
+  try {
+    assert.equal((await page.evaluate(() => window.userTest.start(2))).threaded, true);
+    const r = await page.evaluate(([p, i]) => window.userTest.denoise(p, i), [Array.from(noisy.positions), Array.from(noisy.indices)]);
+    assertClose(assert, Float32Array.from(r.positions), cli.default, 'denoised geometry (dev server vs CLI)');
+    assert.deepEqual(errors.filter((e) => !/\[vite\]/.test(e)), []);
+  } finally {
+    await close();
+  }
+});
