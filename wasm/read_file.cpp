@@ -130,19 +130,22 @@ val readFileChecked(const std::string& name, const val& bytes, double maxVertice
   return result;
 }
 
-}  // namespace
-
-val readFileWithArrays(const std::string& name, const val& bytes, double maxVertices, bool withArrays) {
-  if (maxVertices == 0) maxVertices = static_cast<double>(ReadOptions{}.maxVertices);
+val readFileResult(const std::string& name, const val& bytes, double maxVertices, bool withArrays) {
   val result = guarded([&] { return readFileChecked(name, bytes, maxVertices, withArrays); });
-  // The heap's limit may be the page's budget rather than wasm32's 4 GB (geoshift.worker.ts).
+  // The heap's limit may be the page's budget rather than wasm32's 4 GB (package/src/host.ts).
   if (result["outOfMemory"].isTrue())
     result.set("error", bareName(name) + ": out of memory: reading it needs more memory than the WebAssembly heap may grow to");
   return result;
 }
 
+}  // namespace
+
 val readFile(const std::string& name, const val& bytes, double maxVertices) {
-  return readFileWithArrays(name, bytes, maxVertices, false);
+  return readFileResult(name, bytes, maxVertices, false);
+}
+
+val readFileWithArrays(const std::string& name, const val& bytes, double maxVertices, bool withArrays) {
+  return readFileResult(name, bytes, maxVertices == 0 ? static_cast<double>(ReadOptions{}.maxVertices) : maxVertices, withArrays);
 }
 
 val readFileWithDefaultLimit(const std::string& name, const val& bytes) {

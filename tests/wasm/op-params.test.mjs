@@ -22,9 +22,12 @@ function tableParams(cpp) {
 function declaredParams(ts) {
   const start = ts.indexOf('export const optionNames');
   const body = ts.slice(ts.indexOf('= {', start), ts.indexOf('\n};', start));
+  // coreNames: { op: { packageName: 'coreName' } }, the options the package names differently.
+  const renames = ts.slice(ts.indexOf('export const coreNames'));
+  const coreName = (op, name) => renames.match(new RegExp(`${op}: \\{[^}]*\\b${name}: '(\\w+)'`))?.[1] ?? name;
   const ops = new Map();
   for (const m of body.matchAll(/^\s*(\w+)\s*:\s*\[([^\]]*)\]/gm)) {
-    ops.set(m[1], [...m[2].matchAll(/'(\w+)'/g)].map((p) => p[1]).sort());
+    ops.set(m[1], [...m[2].matchAll(/'(\w+)'/g)].map((p) => coreName(m[1], p[1])).sort());
   }
   return ops;
 }
