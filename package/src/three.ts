@@ -87,10 +87,11 @@ export function applyResult(geometry: BufferGeometry, result: Pick<MeshResult, '
   return out;
 }
 
+/** Whether `positions` are the geometry's own, as geometryToMesh gave them (float32 of any layout). */
 function sameValues(geometry: BufferGeometry, positions: Float32Array): boolean {
   const old = geometry.getAttribute('position');
   for (let i = 0; i < old.count; i++) {
-    if (old.getX(i) !== positions[3 * i] || old.getY(i) !== positions[3 * i + 1] || old.getZ(i) !== positions[3 * i + 2]) return false;
+    for (let k = 0; k < 3; k++) if (Math.fround(old.getComponent(i, k)) !== positions[3 * i + k]) return false;
   }
   return true;
 }
