@@ -19,87 +19,37 @@ namespace geoshift::cli {
 namespace {
 
 struct FilterArgs {
-  std::string in, out, signal, mode, preset, rangeUpdate;
-  std::optional<double> hs, hr, radius, eps;
-  std::optional<int> kmax, passes, levels;
-  std::vector<double> alpha;
-  bool filterGeometry = false;
-  int threads = 0;
-  bool segments = false, exactCharts = false, doubleWeights = false;
+  std::string in, out, preset;
+  std::optional<TableOptions> options;  // the filter op's parameters, checked as the wasm op checks them
+  bool exactCharts = false, doubleWeights = false;
 };
 
-// The preset (if any), then every option given on the command line over it.
+// The preset (if any), then every option given on the command line over it (filterRequest).
 FilterSettings settingsOf(const FilterArgs& a) {
+  const FilterRequest r = filterRequest(a.options->request(), a.preset.empty() ? nullptr : &filterPreset(a.preset));
   FilterSettings s;
-  if (!a.preset.empty()) {
-    const FilterPreset& p = filterPreset(a.preset);
-    s.options = p.options;
-    s.signal = p.signal;
-    s.rangeGiven = true;
-    s.hybrid.levels = p.levels;
-    s.hybrid.alpha = {p.detailGain};
-  }
-  if (!a.signal.empty()) s.signal = a.signal;
-  if (s.signal.empty()) s.signal = "color";
-  MeanShiftOptions& o = s.options;
-  o.passes = filterPasses(a.mode, a.passes, o.passes);
-  if (a.hs) o.spatialBandwidth = *a.hs;
-  if (a.hr) {
-    o.rangeBandwidth = *a.hr;
-    s.rangeGiven = true;
-  }
-  if (a.radius) o.radius = *a.radius;
-  if (a.eps) o.epsilon = *a.eps;
-  if (a.kmax) o.maxIterations = *a.kmax;
-  if (a.rangeUpdate == "sampled") o.rangeUpdate = RangeUpdate::Sampled;
-  if (a.rangeUpdate == "joint") o.rangeUpdate = RangeUpdate::Joint;
-  if (a.levels) s.hybrid.levels = *a.levels;
-  if (!a.alpha.empty()) s.hybrid.alpha = a.alpha;
-  s.hybrid.filterGeometry = a.filterGeometry;
-  o.tuning.exactCharts = a.exactCharts;
-  o.tuning.singlePrecisionKernel = !a.doubleWeights;
-  o.segments = a.segments;
-  o.parallel.threads = a.threads;
+  s.signal = r.signal;
+  s.options = r.options;
+  s.rangeGiven = r.rangeBandwidth.has_value();
+  s.hybrid = r.hybrid;
+  s.options.tuning.exactCharts = a.exactCharts;
+  s.options.tuning.singlePrecisionKernel = !a.doubleWeights;
   return s;
 }
 
 }  // namespace
 
 Command addFilter(CLI::App& app) {
-  auto a = std::make_shared<FilterArgs>();
   CLI::App* sub = app.add_subcommand(
       "filter", "Riemannian mean shift (--mode ms) or blurring mean shift (--mode bms) of a vertex signal");
+  auto a = std::make_shared<FilterArgs>();
   sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off .ply .stl)")->required();
   sub->add_option("-o,--output", a->out, "output mesh; format from its extension")->required();
-  sub->add_option("--signal", a->signal,
-                  "color (COLOR_0), normal (vertex normals), curvature (absolute), terrain (height above ground "
-                  "and class), or the name of a float attribute such as _HEIGHT; several names separated by commas "
-                  "are filtered together (default: color, or the preset's)");
   sub->add_option("--preset", a->preset, "color, curvature-ms, curvature-bms, terrain-ms, terrain-bms (paper §4.2)");
-  sub->add_option("--mode", a->mode, "ms = one pass (mean shift), bms = blurring passes (default 10)")
-      ->check(CLI::IsMember({"ms", "bms"}));
-  sub->add_option("--passes", a->passes, "number of passes (bms)");
-  sub->add_option("--hs", a->hs, "spatial bandwidth h_s in multiples of the average edge length (default 3)");
-  sub->add_option("--hr", a->hr,
-                  "range bandwidth h_r in the signal's units (default: color 0.1, normal 0.45, otherwise a tenth "
-                  "of the signal's 10-90% spread)");
-  sub->add_option("--radius", a->radius, "truncation radius r in AEL (default 3 h_s)");
-  sub->add_option("--kmax", a->kmax, "most iterations per pass (default 50)");
-  sub->add_option("--eps", a->eps, "stop when a step is shorter than this, in AEL (default 0.2)");
-  sub->add_option("--range-update", a->rangeUpdate,
-                  "joint (default): the range value moves with its own mean shift step; sampled (the paper): it "
-                  "is read from the signal at the iterate")
-      ->check(CLI::IsMember({"sampled", "joint"}));
-  sub->add_option("--threads", a->threads, "worker threads (0 = all cores); results do not depend on it")
-      ->capture_default_str();
-  sub->add_option("--levels", a->levels,
-                  "wavelet levels: filter a coarse approximation and restore the details (Algorithm 2; default 0, "
-                  "or the preset's)");
-  sub->add_option("--alpha", a->alpha, "detail gain per level, finest first, or one for all: 1 restores the "
-                                       "details, 0 drops them, > 1 enhances (default 0, or the preset's)")
-      ->delimiter(',');
-  sub->add_flag("--filter-geometry", a->filterGeometry, "with --levels: the gains apply to the positions too");
-  sub->add_flag("--segments", a->segments, "also label vertices by their modes: attribute _SEGMENT");
+  std::vector<std::pair<std::string, std::string>> notes;
+  for (const char* name : {"signal", "passes", "hs", "hr", "radius", "kmax", "eps", "rangeUpdate", "levels", "alpha"})
+    notes.emplace_back(name, "or the preset's");
+  a->options.emplace(sub, "filter", std::vector<std::string>{}, notes);
   sub->add_flag("--exact-charts", a->exactCharts, "a fresh log map at every iteration (slower reference)");
   sub->add_flag("--double-weights", a->doubleWeights,
                 "kernel weights in double precision (slower; single precision moves outputs by ~1e-7 of the signal's scale)");

@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "geoshift/curvature.hpp"
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geodesic.hpp"
 
@@ -105,7 +106,7 @@ double wholeMeshRadius(const SurfaceGeometry& g) {
 
 double radiusOf(const std::optional<double>& radius, const Loaded& l) {
   if (!radius) return wholeMeshRadius(*l.geometry);
-  if (!(*radius > 0)) throw InputError("--radius must be positive");
+  requirePositive("--radius", *radius);
   return *radius * l.unit;
 }
 

@@ -73,7 +73,7 @@ Command addInfo(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("info", "Counts, average edge length, bounds, boundary loops, defects, attributes");
   sub->add_option("FILE", *file, "mesh file (.gltf .glb .obj .off .ply .stl)")->required();
   sub->add_option("--levels", *levels, "also print the vertex count after each of this many wavelet levels")
-      ->check(CLI::NonNegativeNumber);
+      ->check(atLeastCheck(0));
   return {sub, [file, levels] {
             const Document doc = load(*file);
             std::printf("file    %s\nformat  %s\nparts   %zu\n", file->c_str(), formatName(doc.format),

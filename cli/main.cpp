@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   // Before or after the subcommand: subcommands pass options they do not know up to here.
   app.add_option("--max-vertices", geoshift::cli::readOptions().maxVertices,
                  "refuse input files declaring more vertices than this, before allocating (default 50000000)")
-      ->check(CLI::Range(size_t{1}, std::numeric_limits<size_t>::max()));
+      ->check(geoshift::cli::atLeastCheck(1));
   app.fallthrough();
   using namespace geoshift::cli;
   const std::vector<Command> commands = {addInfo(app), addNoise(app), addSmooth(app),

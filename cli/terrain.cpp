@@ -65,10 +65,10 @@ Command addTerrain(CLI::App& app) {
   sub->add_option("--ground-class", a->read.points.groundClass, "class of the ground points (LAS: 2)")->capture_default_str();
   sub->add_flag("--degrees", a->degrees, "geographic DEMs: keep x/y in degrees instead of local metres");
   sub->add_option("--procedural", a->procedural, "generate an N x N procedural terrain instead of reading IN")
-      ->check(CLI::Range(2, 18919));  // 6 (N-1)^2 half-edges must fit an int
+      ->check(rangeCheck(2, 18919));  // 6 (N-1)^2 half-edges must fit an int
   sub->add_option("--seed", a->generator.seed, "seed of the procedural terrain")->capture_default_str();
   sub->add_option("--cell-size", a->generator.cellSize, "procedural grid spacing in metres")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(positiveCheck());
   return {sub, [a] {
             if (a->procedural > 0 && !a->in.empty()) throw InputError("terrain: give IN or --procedural N, not both");
             if (a->procedural == 0 && a->in.empty()) throw InputError("terrain: give an input file or --procedural N");

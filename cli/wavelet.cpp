@@ -5,24 +5,23 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
 #include "geoshift/error.hpp"
-#include "geoshift/wavelet.hpp"
+#include "geoshift/requests.hpp"
 
 namespace geoshift::cli {
 namespace {
 
 struct Args {
   std::string in, out;
-  int levels = 2;
-  std::vector<double> alpha = {0.0};
-  bool positionsOnly = false;
+  std::optional<TableOptions> options;  // the wavelet op's parameters, checked as the wasm op checks them
 };
 
 // Analyses and synthesises one part; returns the vertex counts per level.
-std::vector<int> processPart(MeshPart& part, MeshBuild& b, const Args& a) {
+std::vector<int> processPart(MeshPart& part, MeshBuild& b, const WaveletRequest& a) {
   AttributeSet signals(b.mesh.vertexCount());
   std::vector<double> before;  // welded colors, to hand back only the change (seams keep their split)
   const bool colors = !part.colors.empty() && !a.positionsOnly;
@@ -33,9 +32,7 @@ std::vector<int> processPart(MeshPart& part, MeshBuild& b, const Args& a) {
     before = toMeshLayout(rgb, 3, b.vertexOf, b.mesh);
     signals.set("color", 3, AttributeKind::Euclidean, before);
   }
-  WaveletOptions o;
-  o.levels = a.levels;
-  const Multiresolution mr = analyze(b.mesh, signals, o);
+  const Multiresolution mr = analyze(b.mesh, signals, a.options);
   const SynthesisResult r = synthesize(mr, mr.coarse.positions(), mr.coarseAttributes, a.alpha);
   b.mesh.positions() = r.mesh.positions();
   writeBack(part, b);
@@ -65,34 +62,25 @@ Command addWavelet(CLI::App& app) {
       "wavelet", "Multiresolution smoothing/enhancement of positions and colors (lifting wavelets, detail gains alpha)");
   sub->add_option("IN", a->in, "input mesh (.gltf .glb .obj .off .ply .stl)")->required();
   sub->add_option("-o,--output", a->out, "output mesh; format from its extension")->required();
-  sub->add_option("--levels", a->levels, "analysis levels (each removes ~25% of the vertices)")
-      ->capture_default_str();
-  sub->add_option("--alpha", a->alpha,
-                  "detail gain: one value for all levels or one per level, finest first "
-                  "(0 removes the details, 1 keeps them, > 1 enhances)")
-      ->delimiter(',')
-      ->capture_default_str();
-  sub->add_flag("--positions-only", a->positionsOnly, "leave vertex colors as they are");
+  a->options.emplace(sub, "wavelet");
   return {sub, [a] {
-            if (a->levels < 0) throw InputError("--levels must be >= 0 (got " + std::to_string(a->levels) + ")");
-            if (a->alpha.size() != 1 && a->alpha.size() != static_cast<size_t>(a->levels))
-              throw InputError("--alpha has " + std::to_string(a->alpha.size()) + " values for " +
-                               std::to_string(a->levels) + " levels; give one value or one per level");
-            for (double v : a->alpha)
-              if (!std::isfinite(v)) throw InputError("--alpha values must be finite numbers");
+            const WaveletRequest w = waveletRequest(a->options->request());
+            if (w.alpha.size() != 1 && w.alpha.size() != static_cast<size_t>(w.options.levels))
+              throw InputError("--alpha has " + std::to_string(w.alpha.size()) + " values for " +
+                               std::to_string(w.options.levels) + " levels; give one value or one per level");
             const auto start = std::chrono::steady_clock::now();
             Document doc = load(a->in);
             for (MeshPart& part : doc.parts) {
               MeshBuild b = buildPart(doc, part);
-              const std::vector<int> counts = processPart(part, b, *a);
+              const std::vector<int> counts = processPart(part, b, w);
               std::cerr << "geoshift: wavelet " << part.label << ": vertices per level " << joined(counts) << "\n";
-              if (static_cast<int>(counts.size()) - 1 < a->levels)
+              if (static_cast<int>(counts.size()) - 1 < w.options.levels)
                 std::cerr << "geoshift: note: " << part.label << ": only " << counts.size() - 1
                           << " level(s) possible; the remaining gains are unused\n";
             }
             save(doc, a->out);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            std::cerr << "geoshift: wavelet " << a->levels << " level(s) in " << seconds << " s -> " << a->out << "\n";
+            std::cerr << "geoshift: wavelet " << w.options.levels << " level(s) in " << seconds << " s -> " << a->out << "\n";
           }};
 }
 

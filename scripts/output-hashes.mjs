@@ -45,6 +45,11 @@ const jobs = [
   ['filter geometry', ['filter', at('terrain.glb'), '-o', at('geo.glb'), '--preset', 'terrain-ms', '--levels', '2', '--filter-geometry', '--alpha', '0.5'], 'geo.glb'],
   ['denoise meanshift', ['denoise', at('noisy.obj'), '-o', at('dn.obj'), '--passes', '1'], 'dn.obj'],
   ['denoise bilateral', ['denoise', at('noisy.obj'), '-o', at('dnb.obj'), '--method', 'bilateral'], 'dnb.obj'],
+  ['denoise paper', ['denoise', at('noisy.obj'), '-o', at('dnp.obj'), '--preset', 'paper', '--passes', '1', '--kmax', '10'], 'dnp.obj'],
+  ['denoise hybrid', ['denoise', at('noisy.obj'), '-o', at('dnh.obj'), '--passes', '1', '--levels', '1', '--alpha', '0.5'], 'dnh.obj'],
+  ['denoise taubin', ['denoise', at('noisy.obj'), '-o', at('dnt.obj'), '--method', 'taubin', '--taubin-iterations', '4'], 'dnt.obj'],
+  ['smooth', ['smooth', at('noisy.obj'), '-o', at('smooth.obj'), '--iterations', '5', '--weights', 'cotangent'], 'smooth.obj'],
+  ['geodesic', ['geodesic', dragon, '-o', at('geo-dist.glb'), '--source', '5'], 'geo-dist.glb'],
   ['wavelet', ['wavelet', at('terrain.glb'), '-o', at('wav.glb'), '--levels', '3', '--alpha', '0'], 'wav.glb'],
 ];
 

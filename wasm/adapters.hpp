@@ -8,13 +8,10 @@
 
 namespace geoshift::wasm {
 
-// processMesh(positions: Float32Array [x0 y0 z0 x1 ...], indices: Uint32Array [a0 b0 c0 ...]):
-// welds and builds the mesh, computes the discrete curvatures and returns a ProcessMeshResult.
-// Never throws: bad arguments and the core's InputError messages come back as { ok: false, error }.
-emscripten::val processMesh(const emscripten::val& positions, const emscripten::val& indices);
-
-// loadMesh(positions, indices, extras?: { colors?: Float32Array (3 or 4 per vertex), normals? }):
-// welds and builds a mesh the module keeps; returns { ok, handle, counts, averageEdgeLength, report }.
+// loadMesh(positions: Float32Array [x0 y0 z0 x1 ...], indices: Uint32Array [a0 b0 c0 ...],
+// extras?: { colors?: Float32Array (3 or 4 per vertex), normals? }): welds and builds a mesh the
+// module keeps; returns { ok, handle, counts, vertexOf, averageEdgeLength, report }. Never throws:
+// bad arguments and the core's InputError messages come back as { ok: false, error }.
 emscripten::val loadMesh(const emscripten::val& positions, const emscripten::val& indices, const emscripten::val& extras);
 
 // setAttribute(handle, name, dim, values: Float32Array of dim per caller vertex): adds or replaces a
@@ -58,6 +55,10 @@ emscripten::val readFileWithDefaultLimit(const std::string& name, const emscript
 
 // ops(): the names of the ops this build knows (the web app asks before offering a preset).
 emscripten::val listOps();
+
+// paramSpecs(): every op's parameter table (the core's params.hpp) as plain JS data: types,
+// defaults, ranges, choices, docs and the methods or presets each applies to (param_specs.cpp).
+emscripten::val listParamSpecs();
 
 // presets(): the core's filter presets (filterPresets()) as parameter objects of the filter op,
 // with name, description and signal; the web app takes its preset values from here.

@@ -8,7 +8,7 @@
 #include "convert.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
-#include "geoshift/denoise.hpp"
+#include "geoshift/params.hpp"
 #include "geoshift/presets.hpp"
 #include "ops.hpp"
 
@@ -47,33 +47,6 @@ val positionsOut(const Session& s) {
   return copyOut("Float32Array", xyz);
 }
 
-const OpEntry& findOp(const std::string& op) {
-  std::string known;
-  for (const OpEntry& e : opTable()) {
-    if (op == e.name) return e;
-    known += (known.empty() ? "" : ", ") + std::string(e.name);
-  }
-  throw InputError("unknown op \"" + op + "\" (this build knows " + known + ")");
-}
-
-void rejectUnknownParams(const OpEntry& entry, const val& params) {
-  if (params.isUndefined() || params.isNull()) return;
-  if (params.typeOf().as<std::string>() != "object") throw InputError(std::string(entry.name) + ": params must be an object");
-  const val keys = val::global("Object").call<val>("keys", params);
-  const int count = keys["length"].as<int>();
-  for (int i = 0; i < count; ++i) {
-    const std::string key = keys[i].as<std::string>();
-    bool known = false;
-    for (const std::string& p : entry.params) known = known || p == key;
-    if (!known) {
-      std::string list;
-      for (const std::string& p : entry.params) list += (list.empty() ? "" : ", ") + p;
-      throw InputError(std::string(entry.name) + ": unknown parameter \"" + key + "\" (accepted: " +
-                       (list.empty() ? "none" : list) + ")");
-    }
-  }
-}
-
 }  // namespace
 
 val loadMesh(const val& positions, const val& indices, const val& extras) {
@@ -89,6 +62,7 @@ val loadMesh(const val& positions, const val& indices, const val& extras) {
     result.set("vertexCount", session.callerVertexCount());
     result.set("weldedVertexCount", session.build.mesh.vertexCount());
     result.set("faceCount", session.build.mesh.faceCount());
+    result.set("vertexOf", copyOut("Int32Array", session.build.vertexOf));
     result.set("averageEdgeLength", averageEdgeLength(session.build.mesh));
     result.set("report", reportToJs(session.build.report));
     result.set("handle", sessions().add(std::move(session)));
@@ -136,22 +110,15 @@ val listPresets() {
     entry.set("alpha", p.detailGain);
     list.call<void>("push", entry);
   }
-  // The default denoiser's settings in the denoise op's parameter names (ops_denoise.cpp), so that
-  // the app's Denoise preset shows the library's defaults.
-  const DenoiseOptions d;
+  // The default denoiser's settings in the denoise op's parameter names, from its table (the core's
+  // params.hpp), so that the app's Denoise preset shows the library's defaults.
+  const ParamRequest defaults(paramSpecsOf("denoise"), {});
   val denoise = val::object();
   denoise.set("name", std::string("denoise"));
   denoise.set("description", std::string("the default denoiser (docs/denoising.md)"));
   denoise.set("signal", std::string("normal"));
-  denoise.set("strength", d.strength);
-  denoise.set("hr", d.rangeBandwidths.front());
-  denoise.set("noise", d.noiseLevel);
-  denoise.set("passes", d.fixedPasses);
-  denoise.set("radius", d.neighborhood.radius);
-  denoise.set("hs", d.neighborhood.spatialBandwidth);
-  denoise.set("vertexIterations", d.vertexIterations);
-  denoise.set("levels", d.levels);
-  denoise.set("alpha", d.alpha.front());
+  for (const char* name : {"strength", "hr", "noise", "passes", "radius", "hs", "vertexIterations", "levels", "alpha"})
+    denoise.set(name, defaults.number(name));
   list.call<void>("push", denoise);
   return list;
 }
@@ -160,13 +127,13 @@ val run(int handle, const std::string& op, const val& params, const val& onProgr
   return guarded([&] {
     Session& session = sessions().get(handle);
     const OpEntry& entry = findOp(op);
-    rejectUnknownParams(entry, params);
+    const ParamRequest request(paramSpecsOf(entry.name), paramValuesOf(entry.name, params));
 
     JsProgress js(onProgress);
     const Progress& progress = js.progress;
 
     const double start = emscripten_get_now();
-    const OpContext context{session, Params(entry.name, params), progress};
+    const OpContext context{session, request, progress};
     OpOutput output = entry.run(context);
     progress.step(1, "copying results");
     const double elapsed = emscripten_get_now() - start;

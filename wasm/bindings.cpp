@@ -1,11 +1,11 @@
-// Registrations only; the adapters that turn typed arrays into core calls live in adapters.cpp and
-// api.cpp, the ops in ops_*.cpp, and the TypeScript view of these exports is package/src/module.ts.
+// Registrations only; the adapters that turn typed arrays into core calls live in api.cpp,
+// preview.cpp, read_file.cpp and param_specs.cpp, the ops in ops_*.cpp, and the TypeScript view of
+// these exports is package/src/module.ts.
 #include <emscripten/bind.h>
 
 #include "adapters.hpp"
 
 EMSCRIPTEN_BINDINGS(geoshift) {
-  emscripten::function("processMesh", &geoshift::wasm::processMesh);
   emscripten::function("loadMesh", &geoshift::wasm::loadMesh);
   emscripten::function("loadMesh", &geoshift::wasm::loadMeshWithoutExtras);
   emscripten::function("setAttribute", &geoshift::wasm::setAttribute);
@@ -19,4 +19,5 @@ EMSCRIPTEN_BINDINGS(geoshift) {
   emscripten::function("readFile", &geoshift::wasm::readFileWithArrays);
   emscripten::function("ops", &geoshift::wasm::listOps);
   emscripten::function("presets", &geoshift::wasm::listPresets);
+  emscripten::function("paramSpecs", &geoshift::wasm::listParamSpecs);
 }

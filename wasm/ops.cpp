@@ -1,7 +1,7 @@
-// The op table and the parameter reader. One line per op; see ops.hpp for how to add one.
+// The op table and JS parameter objects as requests. One line per op; see ops.hpp for how to add one.
 #include "ops.hpp"
 
-#include <cmath>
+#include <algorithm>
 #include <thread>
 
 #include "geoshift/error.hpp"
@@ -18,14 +18,19 @@ namespace geoshift::wasm {
 
 const std::vector<OpEntry>& opTable() {
   static const std::vector<OpEntry> table = {
-      {"noise", runNoise, {"amount", "distribution", "direction", "seed"}},
-      {"smooth", runSmooth, {"iterations", "lambda", "mu", "weights"}},
-      {"curvature", runCurvature, {"kind"}},
-      {"geodesic", runGeodesic, {"source", "radius"}},
-      {"filter", runFilter, {"signal", "mode", "passes", "hs", "hr", "radius", "kmax", "eps", "rangeUpdate", "segments", "threads", "levels", "alpha", "filterGeometry"}},
-      {"denoise", runDenoise, {"method", "preset", "noise", "strength", "hs", "hr", "radius", "kmax", "eps", "passes", "vertexIterations", "rangeUpdate", "faceNormals", "threads", "supportIterations", "normalIterations", "sigmaC", "sigmaS", "neighbors", "iterations", "lambda", "mu", "levels", "alpha"}},
+      {"noise", runNoise},   {"smooth", runSmooth}, {"curvature", runCurvature}, {"geodesic", runGeodesic},
+      {"filter", runFilter}, {"denoise", runDenoise}, {"wavelet", runWavelet},
   };
   return table;
+}
+
+const OpEntry& findOp(const std::string& op) {
+  std::string known;
+  for (const OpEntry& e : opTable()) {
+    if (op == e.name) return e;
+    known += (known.empty() ? "" : ", ") + std::string(e.name);
+  }
+  throw InputError("unknown op \"" + op + "\" (this build knows " + known + ")");
 }
 
 int OpContext::threads(int requested) const {
@@ -42,55 +47,44 @@ int OpContext::threads(int requested) const {
 
 using emscripten::val;
 
-val Params::get(const char* name) const {
-  if (object_.isUndefined() || object_.isNull()) return val::undefined();
-  return object_[name];
-}
+namespace {
 
-bool Params::has(const char* name) const { return !get(name).isUndefined(); }
-
-double Params::number(const char* name, double fallback, double min, double max) const {
-  const val v = get(name);
-  if (v.isUndefined()) return fallback;
-  if (v.typeOf().as<std::string>() != "number") {
-    throw InputError(op_ + ": parameter " + name + " must be a number");
+ParamValue paramValueOf(const val& v) {
+  const std::string type = v.typeOf().as<std::string>();
+  if (type == "number") return v.as<double>();
+  if (type == "boolean") return v.as<bool>();
+  if (type == "string") return v.as<std::string>();
+  if (val::global("Array").call<bool>("isArray", v)) {
+    std::vector<double> numbers;
+    const int n = v["length"].as<int>();
+    for (int i = 0; i < n; ++i) {
+      const val item = v[i];
+      if (item.typeOf().as<std::string>() != "number") return Unsupported{};
+      numbers.push_back(item.as<double>());
+    }
+    return numbers;
   }
-  const double x = v.as<double>();
-  if (!std::isfinite(x) || x < min || x > max) {
-    throw InputError(op_ + ": parameter " + name + " = " + std::to_string(x) + " is outside [" +
-                     std::to_string(min) + ", " + std::to_string(max) + "]");
+  return Unsupported{};
+}
+
+}  // namespace
+
+ParamValues paramValuesOf(const std::string& op, const val& params) {
+  if (params.isUndefined() || params.isNull()) return {};
+  if (params.typeOf().as<std::string>() != "object") throw InputError(op + ": params must be an object");
+  const OpParamSpecs& specs = paramSpecsOf(op);
+  ParamValues values;
+  const val keys = val::global("Object").call<val>("keys", params);
+  const int count = keys["length"].as<int>();
+  for (int i = 0; i < count; ++i) {
+    const std::string key = keys[i].as<std::string>();
+    const val v = params[key];
+    // An explicit undefined of a known parameter is no value (spreads of optional fields make them).
+    const bool known = std::any_of(specs.params.begin(), specs.params.end(), [&](const ParamSpec& s) { return s.name == key; });
+    if (v.isUndefined() && known) continue;
+    values.emplace_back(key, paramValueOf(v));
   }
-  return x;
-}
-
-int Params::integer(const char* name, int fallback, int min, int max) const {
-  const double x = number(name, fallback, min, max);
-  if (x != std::floor(x)) throw InputError(op_ + ": parameter " + name + " must be a whole number");
-  return static_cast<int>(x);
-}
-
-bool Params::flag(const char* name, bool fallback) const {
-  const val v = get(name);
-  if (v.isUndefined()) return fallback;
-  if (v.typeOf().as<std::string>() != "boolean") throw InputError(op_ + ": parameter " + name + " must be true or false");
-  return v.as<bool>();
-}
-
-std::string Params::text(const char* name, const std::string& fallback) const {
-  const val v = get(name);
-  if (v.isUndefined()) return fallback;
-  if (v.typeOf().as<std::string>() != "string") throw InputError(op_ + ": parameter " + name + " must be a string");
-  return v.as<std::string>();
-}
-
-std::string Params::choice(const char* name, const std::string& fallback, const std::vector<std::string>& choices) const {
-  const std::string s = text(name, fallback);
-  for (const std::string& c : choices) {
-    if (c == s) return s;
-  }
-  std::string list;
-  for (const std::string& c : choices) list += (list.empty() ? "" : ", ") + c;
-  throw InputError(op_ + ": parameter " + name + " = \"" + s + "\" is not one of " + list);
+  return values;
 }
 
 }  // namespace geoshift::wasm

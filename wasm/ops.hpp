@@ -1,11 +1,13 @@
 #pragma once
 // Operations that `run(handle, op, params, onProgress)` dispatches to.
 //
-// Adding an op: write wasm/ops_NAME.cpp defining `OpOutput runNAME(const OpContext&)`, declare it
-// below, and add one line to the table in ops.cpp (name, function, accepted parameter names).
-// wasm/CMakeLists.txt picks up every wasm/*.cpp, and geoshift.d.ts lists the ops and their
-// parameters for TypeScript. An op never changes the session itself: it works on copies and
-// returns what changed; the dispatcher commits that only when the op succeeded.
+// Adding an op: add its parameter table to core/src/param_specs.cpp (names, types, defaults,
+// ranges: the only place that knows them), write wasm/ops_NAME.cpp defining `OpOutput
+// runNAME(const OpContext&)`, declare it below, and add one line to the table in ops.cpp.
+// wasm/CMakeLists.txt picks up every wasm/*.cpp; the npm package's option types are generated from
+// the tables (paramSpecs(); package/scripts/generate-options.mjs). An op never changes the session
+// itself: it works on copies and returns what changed; the dispatcher commits that only when the op
+// succeeded.
 #include <atomic>
 #include <optional>
 #include <string>
@@ -15,6 +17,7 @@
 
 #include <emscripten/val.h>
 
+#include "geoshift/params.hpp"
 #include "geoshift/progress.hpp"
 #include "session.hpp"
 
@@ -43,29 +46,11 @@ struct JsProgress {
   Progress progress;
 };
 
-// The JS parameter object of one run, read with defaults and range checks. Every message names the
-// op and the parameter, in the JS spelling the caller used.
-class Params {
- public:
-  Params(std::string op, emscripten::val object) : op_(std::move(op)), object_(std::move(object)) {}
-
-  double number(const char* name, double fallback, double min, double max) const;
-  int integer(const char* name, int fallback, int min, int max) const;
-  bool flag(const char* name, bool fallback) const;
-  // One of `choices`; the message lists them.
-  std::string choice(const char* name, const std::string& fallback, const std::vector<std::string>& choices) const;
-  std::string text(const char* name, const std::string& fallback) const;
-  bool has(const char* name) const;
-
- private:
-  emscripten::val get(const char* name) const;
-  std::string op_;
-  emscripten::val object_;
-};
-
 struct OpContext {
   const Session& session;
-  Params params;
+  // The op's parameters, checked against its table in the core (params.hpp) before the op runs:
+  // read them by name, with the table's defaults.
+  const ParamRequest& params;
   // Report at least every ~100 ms; step() throws Cancelled once the caller asked to stop.
   const Progress& progress;
   // Worker threads an op may start for `requested` (0 = as many as the machine has): 1 in the
@@ -92,12 +77,19 @@ struct OpOutput {
 using OpFunction = OpOutput (*)(const OpContext&);
 
 struct OpEntry {
-  const char* name;
+  const char* name;  // also the name of its parameter table, paramSpecsOf(name)
   OpFunction run;
-  std::vector<std::string> params;  // accepted names; anything else is rejected before running
 };
 
 const std::vector<OpEntry>& opTable();
+
+// The op of that name; InputError naming the ops this build knows for another.
+const OpEntry& findOp(const std::string& op);
+
+// A JS parameter object (undefined or null: no parameters) as the values of a request of `op`:
+// numbers, booleans, strings and arrays of numbers as they are, anything else as Unsupported (the
+// core's check names the type it wants). InputError when it is not an object.
+ParamValues paramValuesOf(const std::string& op, const emscripten::val& params);
 
 OpOutput runNoise(const OpContext&);      // ops_noise.cpp
 OpOutput runSmooth(const OpContext&);     // ops_smooth.cpp
@@ -105,5 +97,6 @@ OpOutput runCurvature(const OpContext&);  // ops_curvature.cpp
 OpOutput runGeodesic(const OpContext&);   // ops_geodesic.cpp
 OpOutput runFilter(const OpContext&);     // ops_filter.cpp
 OpOutput runDenoise(const OpContext&);    // ops_denoise.cpp
+OpOutput runWavelet(const OpContext&);    // ops_wavelet.cpp
 
 }  // namespace geoshift::wasm

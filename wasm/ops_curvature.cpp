@@ -1,16 +1,13 @@
 // op "curvature": discrete curvature as the scalar "_CURVATURE" plus its color map, as
 // `geoshift curvature` writes them (_CURVATURE and COLOR_0).
-#include "geoshift/curvature.hpp"
+#include "geoshift/requests.hpp"
 #include "ops.hpp"
 
 namespace geoshift::wasm {
 
 OpOutput runCurvature(const OpContext& context) {
-  const std::string kind = context.params.choice("kind", "abs", {"abs", "mean", "gauss", "rms"});
-  const CurvatureKind k = kind == "mean"    ? CurvatureKind::Mean
-                          : kind == "gauss" ? CurvatureKind::Gaussian
-                          : kind == "rms"   ? CurvatureKind::Rms
-                                            : CurvatureKind::Absolute;
+  const std::string kind = context.params.text("kind");
+  const CurvatureKind k = curvatureKind(context.params);
   context.progress.step(0, "curvature");
   std::vector<double> values = curvatures(context.session.build.mesh).get(k);
   OpOutput out;

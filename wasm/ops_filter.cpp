@@ -33,37 +33,18 @@ SignalInputs inputsOf(const Session& s) {
 }  // namespace
 
 OpOutput runFilter(const OpContext& context) {
-  const Params& p = context.params;
+  const ParamRequest& p = context.params;
   const Session& s = context.session;
   const Mesh& mesh = s.build.mesh;
 
   // levels > 0: the hybrid filter (Algorithm 2), the mean shift on a wavelet-coarsened mesh with
   // the details added back times alpha; 0 is the plain mean shift, as in the CLI.
-  HybridOptions hybrid;
-  hybrid.levels = p.integer("levels", 0, 0, 64);
-  hybrid.alpha = {p.number("alpha", 0, -100, 100)};
-  hybrid.filterGeometry = p.flag("filterGeometry", false);
+  const FilterRequest request = filterRequest(p);
+  MeanShiftOptions o = request.options;
+  o.parallel.threads = context.threads(o.parallel.threads);
+  const HybridOptions& hybrid = request.hybrid;
 
-  MeanShiftOptions o;
-  const std::string mode = p.has("mode") ? p.choice("mode", "ms", {"ms", "bms"}) : "";
-  const std::optional<int> passes =
-      p.has("passes") ? std::optional<int>(p.integer("passes", 1, 1, 10000)) : std::nullopt;
-  try {
-    o.passes = filterPasses(mode, passes);
-  } catch (const InputError& e) {
-    throw InputError(std::string("filter: ") + e.what());
-  }
-  o.spatialBandwidth = p.number("hs", o.spatialBandwidth, 1e-6, 1e6);
-  o.radius = p.number("radius", o.radius, 0, 1e6);
-  o.epsilon = p.number("eps", o.epsilon, 1e-9, 1e6);
-  o.maxIterations = p.integer("kmax", o.maxIterations, 1, 1000000);
-  o.rangeUpdate = p.choice("rangeUpdate", "joint", {"joint", "sampled"}) == "sampled" ? RangeUpdate::Sampled
-                                                                                        : RangeUpdate::Joint;
-  o.segments = p.flag("segments", false);
-  o.parallel.threads = context.threads(p.integer("threads", 0, 0, 1024));
-  const std::optional<double> hr = p.has("hr") ? std::optional(p.number("hr", 0.1, 1e-12, 1e12)) : std::nullopt;
-
-  const FilterSignal signal = filterSignal(mesh, p.text("signal", "color"), inputsOf(s), hr, context.progress);
+  const FilterSignal signal = filterSignal(mesh, request.signal, inputsOf(s), request.rangeBandwidth, context.progress);
   o.channels = signal.channels;
   HybridResult r = hybridMeanShift(mesh, signal.values, o, hybrid, context.progress);
 
@@ -100,7 +81,7 @@ OpOutput runFilter(const OpContext& context) {
     out.scalars.emplace_back("_SEGMENT", std::vector<double>(r.segment.begin(), r.segment.end()));
     out.stats.set("segmentCount", r.segmentCount);
   }
-  out.stats.set("signal", p.text("signal", "color"));
+  out.stats.set("signal", request.signal);
   out.stats.set("passes", o.passes);
   out.stats.set("rangeBandwidth", o.channels.front().rangeBandwidth);
   // Iterations are those of the mean shift, on the coarse mesh when levels > 0.

@@ -1,7 +1,9 @@
 // op "geodesic": geodesic distance from one vertex (DGPC log map) as the scalar "_GEODESIC";
 // vertices beyond the radius get -1 so a color map can show them as "not reached".
+#include <cstdint>
 #include <limits>
 
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geodesic.hpp"
 #include "geoshift/geometry.hpp"
@@ -11,9 +13,11 @@ namespace geoshift::wasm {
 
 OpOutput runGeodesic(const OpContext& context) {
   const Session& s = context.session;
-  const int source = context.params.integer("source", 0, 0, s.callerVertexCount() - 1);
-  // In multiples of the average edge length; the default reaches any vertex of a sane mesh.
-  const double radius = context.params.number("radius", 1e9, 1e-6, 1e12);
+  const std::int64_t given = context.params.integer64("source");
+  requireIndex("geodesic: parameter source", given, s.callerVertexCount());
+  const int source = static_cast<int>(given);
+  // In multiples of the average edge length; without one, no limit: every vertex connected to the source.
+  const double radius = context.params.optionalNumber("radius").value_or(std::numeric_limits<double>::infinity());
   const Mesh& mesh = s.build.mesh;
   const int vertex = s.build.vertexOf[source];
   if (mesh.isIsolated(vertex)) throw InputError("geodesic: source vertex " + std::to_string(source) + " belongs to no triangle");

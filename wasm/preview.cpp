@@ -116,31 +116,14 @@ std::vector<double> prolong(const Multiresolution& mr, const std::vector<double>
   return fine;
 }
 
-const OpEntry& findPreviewOp(const std::string& op) {
-  for (const OpEntry& e : opTable())
-    if (op == e.name) return e;
-  throw InputError("preview: unknown op \"" + op + "\"");
-}
-
-void rejectUnknown(const OpEntry& entry, const val& params) {
-  if (params.isUndefined() || params.isNull()) return;
-  if (params.typeOf().as<std::string>() != "object") throw InputError(std::string(entry.name) + ": params must be an object");
-  const val keys = val::global("Object").call<val>("keys", params);
-  for (int i = 0; i < keys["length"].as<int>(); ++i) {
-    const std::string key = keys[i].as<std::string>();
-    if (std::find(entry.params.begin(), entry.params.end(), key) == entry.params.end())
-      throw InputError(std::string(entry.name) + ": unknown parameter \"" + key + "\"");
-  }
-}
-
 }  // namespace
 
 val preview(int handle, const std::string& op, const val& params, int maxVertices, const val& onProgress) {
   return guarded([&] {
     Session& session = sessions().get(handle);
     if (maxVertices < 100) throw InputError("preview: maxVertices must be at least 100, not " + std::to_string(maxVertices));
-    const OpEntry& entry = findPreviewOp(op);
-    rejectUnknown(entry, params);
+    const OpEntry& entry = findOp(op);
+    const ParamRequest request(paramSpecsOf(entry.name), paramValuesOf(entry.name, params));
 
     JsProgress js(onProgress);
     const Progress& progress = js.progress;
@@ -181,7 +164,7 @@ val preview(int handle, const std::string& op, const val& params, int maxVertice
     int levels = 0;
     for (std::size_t k = 0; k < used; ++k) levels += cache.stages[k].levelCount();
 
-    const OpContext context{cache.coarse, Params(entry.name, params), progress};
+    const OpContext context{cache.coarse, request, progress};
     const double opStart = emscripten_get_now();
     OpOutput output = entry.run(context);
     const double opMs = emscripten_get_now() - opStart;

@@ -131,4 +131,35 @@ int filterPasses(std::string_view mode, std::optional<int> passes, int base) {
   return passes ? *passes : base;
 }
 
+FilterRequest filterRequest(const ParamRequest& r, const FilterPreset* preset) {
+  FilterRequest f;
+  MeanShiftOptions& o = f.options;
+  if (preset) {
+    o = preset->options;
+    f.signal = preset->signal;
+    f.rangeBandwidth = o.rangeBandwidth;
+    f.hybrid.levels = preset->levels;
+    f.hybrid.alpha = {preset->detailGain};
+  }
+  if (!preset || r.has("signal")) f.signal = r.text("signal");
+  try {
+    o.passes = filterPasses(r.has("mode") ? r.text("mode") : "", r.has("passes") ? r.optionalInteger("passes") : std::nullopt,
+                            o.passes);
+  } catch (const InputError& e) {
+    throw InputError(std::string("filter: ") + e.what());
+  }
+  if (r.has("hs")) o.spatialBandwidth = r.number("hs");
+  if (r.has("hr")) f.rangeBandwidth = o.rangeBandwidth = r.number("hr");
+  if (r.has("radius")) o.radius = r.number("radius");
+  if (r.has("eps")) o.epsilon = r.number("eps");
+  if (r.has("kmax")) o.maxIterations = r.integer("kmax");
+  if (r.has("rangeUpdate")) o.rangeUpdate = r.text("rangeUpdate") == "sampled" ? RangeUpdate::Sampled : RangeUpdate::Joint;
+  o.segments = r.flag("segments");
+  o.parallel.threads = r.integer("threads");
+  if (r.has("levels")) f.hybrid.levels = r.integer("levels");
+  if (r.has("alpha")) f.hybrid.alpha = r.numbers("alpha");
+  f.hybrid.filterGeometry = r.flag("filterGeometry");
+  return f;
+}
+
 }  // namespace geoshift

@@ -3,8 +3,23 @@
 #include <chrono>
 
 #include "geoshift/error.hpp"
+#include "geoshift/geometry.hpp"
 
 namespace geoshift {
+
+namespace {
+
+// The options with their spatial quantities in hybrid.unit instead of the filtered mesh's AEL.
+MeanShiftOptions inUnits(MeanShiftOptions o, const Mesh& filtered, double unit) {
+  if (unit <= 0) return o;
+  const double factor = unit / averageEdgeLength(filtered);
+  o.spatialBandwidth *= factor;
+  o.radius *= factor;  // 0 stays 0: 3 h_s, scaled with h_s
+  o.epsilon *= factor;
+  return o;
+}
+
+}  // namespace
 
 HybridResult hybridMeanShift(const Mesh& mesh, const AttributeSet& signal, const MeanShiftOptions& options,
                              const HybridOptions& hybrid, const Progress& progress) {
@@ -12,7 +27,7 @@ HybridResult hybridMeanShift(const Mesh& mesh, const AttributeSet& signal, const
   HybridResult result;
   if (hybrid.levels < 0) throw InputError("hybrid filter: levels must be >= 0 (got " + std::to_string(hybrid.levels) + ")");
   if (hybrid.levels == 0) {
-    result.coarse = meanShift(mesh, signal, options, progress);
+    result.coarse = meanShift(mesh, signal, inUnits(options, mesh, hybrid.unit), progress);
     result.signal = result.coarse.signal;
     result.positions = mesh.positions();
     result.segment = result.coarse.segment;
@@ -35,7 +50,7 @@ HybridResult hybridMeanShift(const Mesh& mesh, const AttributeSet& signal, const
   w.levels = hybrid.levels;
   const Multiresolution mr = analyze(mesh, channels, w, progress.slice(0, 0.1));
   result.vertexCounts = mr.vertexCounts();
-  result.coarse = meanShift(mr.coarse, mr.coarseAttributes, options, progress.slice(0.1, 0.95));
+  result.coarse = meanShift(mr.coarse, mr.coarseAttributes, inUnits(options, mr.coarse, hybrid.unit), progress.slice(0.1, 0.95));
   const SynthesisResult fine = synthesize(mr, mr.coarse.positions(), result.coarse.signal, hybrid.alpha, progress.slice(0.95, 1));
   result.signal = fine.attributes;
   result.positions = hybrid.filterGeometry ? fine.mesh.positions() : mesh.positions();

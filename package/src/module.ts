@@ -29,6 +29,8 @@ export interface LoadMeshSuccess {
   /** Mean edge length of the welded mesh: the unit (AEL) of every spatial parameter. */
   averageEdgeLength: number;
   report: BuildReport;
+  /** Caller vertex -> welded vertex; length = vertexCount. */
+  vertexOf: Int32Array;
 }
 
 export interface RunSuccess {
@@ -60,9 +62,32 @@ export interface GeoshiftModule {
   readFile(name: string, bytes: Uint8Array, maxVertices: number, withArrays: boolean): ReadFileSuccess | Failure;
   ops(): string[];
   presets(): CorePreset[];
+  /** Every op's parameter table (the core's params.hpp): options.ts is generated from it. */
+  paramSpecs(): ParamSpecs;
   /** The threaded flavour's pthread pool (Emscripten's), terminated with the module. */
   PThread?: { terminateAllThreads(): void };
 }
+
+/** One parameter of an op's table (core/include/geoshift/params.hpp), as paramSpecs() gives it. */
+export interface ParamSpec {
+  type: 'number' | 'integer' | 'boolean' | 'enum' | 'string';
+  doc: string;
+  /** Absent: none, or computed by the op (the doc says how). A list's default is a number when it is one value. */
+  default?: number | boolean | string | number[];
+  min?: number;
+  max?: number;
+  /** min itself is refused (the parameter must be > min). */
+  minExclusive?: true;
+  /** enum: the choices. */
+  values?: string[];
+  /** number, integer: one value or an array of them (e.g. one per level). */
+  list?: true;
+  /** Applies only where one of these holds: each named parameter has one of the listed values. */
+  when?: Array<Record<string, string[]>>;
+  /** Other defaults or bounds where `when` holds (the first that holds). */
+  cases?: Array<{ when: Record<string, string[]>; default?: number | boolean | string | number[]; min?: number; max?: number }>;
+}
+export type ParamSpecs = Record<string, { doc: string; params: Record<string, ParamSpec> }>;
 
 /** Emscripten module options the worker passes; all optional. */
 export interface ModuleOptions {

@@ -9,7 +9,8 @@ from ._geoshift import (BilateralNormalOptions, Cancelled, DenoiseOptions, FaceN
                         MeanShiftOptions, PaperDenoiseOptions, ParallelOptions, SignalChannel, TaubinOptions, TerrainOptions, VertexUpdateOptions,
                         WaveletOptions, color_map, delaunay_2d, height_above_ground, spread_bandwidth)
 from ._filters import (DenoiseResult, FilterResult, Multiresolution, analyze, bilateral_normal_denoise, curvature,
-                       curvatures, denoise, mean_shift, presets, synthesize, taubin_smooth, wavelet_filter)
+                       curvatures, denoise, mean_shift, param_specs, presets, synthesize, taubin_smooth,
+                       wavelet_filter)
 from ._geodesic import Geodesics, exp_map, log_map
 from ._mesh import Document, Mesh, read, write
 from ._terrain import (grid_terrain, point_terrain, procedural_terrain, read_geotiff, read_las, read_ply_points,
@@ -22,7 +23,7 @@ __all__ = [
     "FilterResult", "Geodesics", "InputError", "MeanShiftOptions", "Mesh", "Multiresolution", "PaperDenoiseOptions", "ParallelOptions", "SignalChannel",
     "TaubinOptions", "TerrainOptions", "VertexUpdateOptions", "WaveletOptions", "analyze",
     "bilateral_normal_denoise", "color_map", "curvature", "curvatures", "delaunay_2d", "denoise", "exp_map",
-    "grid_terrain", "height_above_ground", "log_map", "mean_shift", "point_terrain", "presets",
+    "grid_terrain", "height_above_ground", "log_map", "mean_shift", "param_specs", "point_terrain", "presets",
     "procedural_terrain", "read", "read_geotiff", "read_las", "read_ply_points", "read_terrain",
     "spread_bandwidth", "synthesize", "taubin_smooth", "wavelet_filter", "write",
 ]

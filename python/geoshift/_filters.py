@@ -165,16 +165,48 @@ def _moved(mesh: Mesh, positions: np.ndarray) -> Mesh:
     return out
 
 
+def param_specs() -> Dict[str, dict]:
+    """Every op's parameter table, as the CLI, the wasm module (paramSpecs()) and denoise() read it:
+    op -> {doc, params: name -> {type, doc, default, min, max, minExclusive, values, list, when,
+    cases}} (keys present only when they say something; docs/architecture.md#parameters)."""
+    return _core._param_specs()
+
+
+def _request_name(keyword: str) -> str:
+    """A keyword in Python's spelling as the request's parameter name: vertex_iterations ->
+    vertexIterations, lambda_ -> lambda."""
+    head, *rest = keyword.rstrip("_").split("_")
+    return head + "".join(w[:1].upper() + w[1:] for w in rest)
+
+
 def denoise(mesh: Mesh, *, weld: bool = True, progress: Progress = None,
             options: Union[DenoiseOptions, dict, None] = None, **kwargs) -> DenoiseResult:
-    """Mesh denoising (docs/denoising.md). The default: the noise level is estimated from the mesh,
-    face normals are filtered by blurring mean shift over geodesic neighbourhoods, the vertices
-    follow, and the amount of smoothing is chosen by Stein's unbiased risk estimate; preset="paper"
-    runs the paper's 4.1 pipeline. Keyword arguments are the fields of DenoiseOptions (nested ones
-    as dicts or options objects, e.g. paper=dict(passes=2)); levels > 0 denoises a
+    """Mesh denoising (docs/denoising.md), as `geoshift denoise`. The default: the noise level is
+    estimated from the mesh, face normals are filtered by blurring mean shift over geodesic
+    neighbourhoods, the vertices follow, and the amount of smoothing is chosen by Stein's unbiased
+    risk estimate; preset="paper" runs the paper's 4.1 pipeline; method="bilateral" or "taubin"
+    the baselines.
+
+    Keyword arguments are the parameters of the CLI's command and the wasm op, in snake_case
+    (method, preset, noise, strength, hs, hr, radius, passes, vertex_iterations, sigma_s, ...;
+    param_specs()["denoise"] lists them with defaults and ranges): the core checks them as it does
+    for the CLI and the wasm op, so a parameter of another method or preset is refused with the
+    same message. Fields of DenoiseOptions that are no such parameter (fixed_passes, noise_level,
+    paper=dict(passes=2), ...) set the options directly, over `options`; levels > 0 denoises a
     wavelet-coarsened mesh. stats holds what was estimated and chosen."""
-    o = _options(DenoiseOptions, options, kwargs)
-    r = _core._denoise(mesh._built(weld), o, progress)
+    names = param_specs()["denoise"]["params"]
+    request, fields = {}, {}
+    for key, value in kwargs.items():
+        name = _request_name(key)
+        if name in names:
+            request[name] = value
+        else:
+            fields[key] = value
+    o = _options(DenoiseOptions, options, fields)
+    # The request decides the preset: an options object's own stands unless one is given.
+    if "preset" not in request and o.preset == "paper" and request.get("method", "meanshift") == "meanshift":
+        request["preset"] = "paper"
+    r = _core._denoise(mesh._built(weld), request, o, progress)
     stats = {k: v for k, v in r.items() if k != "positions"}
     return DenoiseResult(_moved(mesh, r["positions"]), stats)
 

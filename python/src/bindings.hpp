@@ -17,7 +17,9 @@ MeshPart partOf(const py::handle& mesh, const std::string& where);
 
 void bindOptions(py::module_& m);
 void bindMeshIo(py::module_& m);
-void bindFilters(py::module_& m);
+void bindFilters(py::module_& m);    // filters.cpp; registers the two below too
+void bindDenoising(py::module_& m);  // denoise.cpp
+void bindWavelets(py::module_& m);   // wavelets.cpp
 void bindGeodesics(py::module_& m);
 void bindTerrain(py::module_& m);
 

@@ -1,5 +1,7 @@
 #include "common.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <sstream>
 
 namespace geoshift::python {
@@ -145,6 +147,41 @@ void Run::rethrowPending() {
   py::error_already_set e = std::move(*pending_);
   pending_.reset();
   throw e;
+}
+
+Inputs inputsOf(const Built& b, const py::handle& colors, const py::dict& attributes, const std::vector<std::string>& unit) {
+  Inputs in;
+  const size_t n = b.callerVertices();
+  if (!colors.is_none()) {
+    int dim = 0;
+    std::vector<double> rows = toRows(colors, "colors", dim);
+    if ((dim != 3 && dim != 4) || rows.size() != n * dim)
+      throw InputError("colors must have shape (N, 3) or (N, 4) for the mesh's " + std::to_string(n) + " vertices");
+    for (size_t i = 0; i < n; ++i) in.colors.insert(in.colors.end(), {rows[dim * i], rows[dim * i + 1], rows[dim * i + 2]});
+  }
+  for (auto [k, v] : attributes) {
+    Named a;
+    a.name = py::str(k);
+    a.values = toRows(v, "attribute '" + a.name + "'", a.dim);
+    if (a.values.size() != n * a.dim)
+      throw InputError("attribute '" + a.name + "' has " + std::to_string(a.values.size() / a.dim) + " rows for the mesh's " +
+                       std::to_string(n) + " vertices");
+    a.unit = std::find(unit.begin(), unit.end(), a.name) != unit.end();
+    in.attributes.push_back(std::move(a));
+  }
+  return in;
+}
+
+WaveletOptions onMesh(const Built& b, WaveletOptions w) {
+  if (w.wholeIndex.empty()) return w;
+  const size_t n = b.callerVertices();
+  if (w.wholeIndex.size() != n)
+    throw InputError("wavelet whole_index has " + std::to_string(w.wholeIndex.size()) + " entries for the mesh's " +
+                     std::to_string(n) + " vertices");
+  std::vector<std::int64_t> index(b.mesh().vertexCount(), std::numeric_limits<std::int64_t>::max());
+  for (size_t i = 0; i < n; ++i) index[b.build.vertexOf[i]] = std::min(index[b.build.vertexOf[i]], w.wholeIndex[i]);
+  w.wholeIndex = std::move(index);
+  return w;
 }
 
 }  // namespace geoshift::python

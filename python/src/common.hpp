@@ -17,6 +17,7 @@
 #include "geoshift/geodesic.hpp"
 #include "geoshift/mesh.hpp"
 #include "geoshift/progress.hpp"
+#include "geoshift/wavelet.hpp"
 
 namespace py = pybind11;
 
@@ -57,6 +58,29 @@ struct Built {
   std::vector<double> toMesh(const std::vector<double>& caller, int dim, bool unitVectors = false) const;
   std::vector<double> toCaller(const std::vector<double>& mesh, int dim) const;
 };
+
+// --- signals and wavelet options given per caller vertex ---------------------------------------
+
+// The caller's per-vertex data that a signal name may refer to, copied out of Python.
+struct Named {
+  std::string name;
+  int dim = 1;
+  bool unit = false;
+  std::vector<double> values;  // caller layout
+};
+
+struct Inputs {
+  std::vector<double> colors;  // caller layout RGB, empty when none
+  std::vector<Named> attributes;
+};
+
+// Colors ((N, 3) or (N, 4), or None) and named attributes ((N,) or (N, dim)) of the caller's N
+// vertices; names in `unit` are unit vectors. InputError naming the array of another shape.
+Inputs inputsOf(const Built& b, const py::handle& colors, const py::dict& attributes, const std::vector<std::string>& unit);
+
+// The wavelet options of a call with WaveletOptions::wholeIndex, which Python gives per caller
+// vertex, per mesh vertex (welded vertices take their smallest).
+WaveletOptions onMesh(const Built& b, WaveletOptions w);
 
 // --- long calls --------------------------------------------------------------------------------
 

@@ -68,7 +68,7 @@ TEST_CASE("cli: denoise removes noise with every method and says what it did", "
   CHECK(rmsToClean(dir / "bilateral.off", dir / "clean.off") < 0.5 * noisy);
 
   r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "edge.off") +
-                  " --neighbors edge --normal-iterations 30 --sigma-s 0.3 --sigma-c 1 --vertex-iterations 20"
+                  " --method bilateral --neighbors edge --normal-iterations 30 --sigma-s 0.3 --sigma-c 1 --vertex-iterations 20"
                   " --flip-guard input-or-target");
   REQUIRE(r.code == 0);
   CHECK(rmsToClean(dir / "edge.off", dir / "clean.off") < 0.6 * noisy);
@@ -93,10 +93,10 @@ TEST_CASE("cli: denoise refuses bad input without writing anything", "[cli][deno
   // An option of the other preset is refused, naming it.
   r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --kmax 10");
   CHECK(r.code == 1);
-  CHECK_THAT(r.err, Catch::Contains("--kmax does not apply to --preset default"));
+  CHECK_THAT(r.err, Catch::Contains("parameter kmax belongs to preset \"paper\"; kmax does not apply to preset \"default\""));
   r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --preset paper --strength 2");
   CHECK(r.code == 1);
-  CHECK_THAT(r.err, Catch::Contains("--strength does not apply to --preset paper"));
+  CHECK_THAT(r.err, Catch::Contains("parameter strength belongs to preset \"default\"; strength does not apply to preset \"paper\""));
   r = geoshiftCli("denoise " + q(dir / "sphere.off") + " -o " + q(dir / "out.off") + " --method taubin --mu 0.1");
   CHECK(r.code == 1);
   CHECK_THAT(r.err, Catch::Contains("mu"));

@@ -102,7 +102,7 @@ TEST_CASE("cli: wavelet rejects bad levels and alpha counts without writing", "[
   CHECK(r.err.find("--alpha has 2 values for 3 levels") != std::string::npos);
   r = geoshiftCli("wavelet " + q(f.off) + " -o " + q(out) + " --levels -1");
   CHECK(r.code == 1);
-  CHECK(r.err.find("--levels must be >= 0") != std::string::npos);
+  CHECK(r.err.find("wavelet: parameter levels must be >= 0 (got -1)") != std::string::npos);  // as the wasm op says it
   r = geoshiftCli("wavelet " + q(f.off) + " -o " + q(out) + " --alpha nan");
   CHECK(r.code != 0);
   CHECK(!fs::exists(out));

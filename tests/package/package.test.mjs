@@ -100,6 +100,7 @@ before(async () => {
   cli = {
     default: runNative(dir, 'denoise', off, [])('POSITION'),
     taubin: runNative(dir, 'denoise', off, ['--method', 'taubin', '--taubin-iterations', '4'])('POSITION'),
+    wavelet: runNative(dir, 'wavelet', off, ['--levels', '2', '--alpha', '0,0.5'])('POSITION'),
     colors: runNative(dir, 'filter', path.join(dir, 'sphere.off'), ['--signal', 'color', '--hr', '0.15'])('COLOR_0'),
   };
   browser = await chromium.launch(CHROMIUM);
@@ -148,7 +149,7 @@ test('wrong option names and types, and a call the API does not have, fail to co
   assert.deepEqual(typeErrors(r.stdout), expected, r.stdout);
 });
 
-test('under Node: read, denoise with progress, filter colors, cancel, errors; the CLI\'s numbers, and the same bits with one thread', (t) => {
+test('under Node: read, denoise with progress, wavelet, filter colors, cancel, errors; the CLI\'s numbers, and the same bits with one thread', (t) => {
   const program = path.join(dir, 'out/node/denoise.js');
   const runs = ['auto', '1'].map((threads) => JSON.parse(execFileSync(process.execPath,
     [program, path.join(dir, 'box.off'), path.join(dir, 'sphere.off'), ...(threads === 'auto' ? [] : [threads])], { encoding: 'utf8' })));
@@ -163,6 +164,7 @@ test('under Node: read, denoise with progress, filter colors, cancel, errors; th
     assertClose(assert, Float32Array.from(r.positions), cli.default, 'denoise positions (Node vs CLI)');
     assertClose(assert, Float32Array.from(r.taubin), cli.taubin, 'taubin positions (Node vs CLI)');
     assertClose(assert, Float32Array.from(r.colors), cli.colors, 'filtered colors (Node vs CLI)');
+    assertClose(assert, Float32Array.from(r.wavelet), cli.wavelet, 'wavelet positions (Node vs CLI)');
     assert.ok(r.stages.length >= 2, `stages: ${r.stages}`);
     assert.equal(r.inputUnchanged, true);
     assert.equal(r.cancel.kind, 'cancelled');

@@ -155,3 +155,31 @@ def test_geodesics_walk_back_to_the_vertex(terrain):
     i = int(np.flatnonzero(lm["vertex"] == 2081)[0])
     e = g.exp_map(2080, (lm["x"][i], lm["y"][i]))
     np.testing.assert_allclose(e["point"], terrain.positions[2081], atol=1e-6 * g.average_edge_length)
+
+
+def test_denoise_keywords_are_the_cli_and_wasm_request(terrain):
+    """The request's parameters in snake_case are checked by the core as the CLI and the wasm op
+    check them (tests/wasm/denoise-requests.test.mjs compares the three on one table)."""
+    with pytest.raises(geoshift.InputError,
+                       match='denoise: parameter hs belongs to method "meanshift"; hs does not apply to method "taubin"'):
+        geoshift.denoise(terrain, method="taubin", hs=3)
+    with pytest.raises(geoshift.InputError, match=r"parameter vertexIterations is outside \[1, 10000\] \(got 0\)"):
+        geoshift.denoise(terrain, vertex_iterations=0)
+    # A request keyword and a DenoiseOptions field together: the field sets what the request does not.
+    smoothed = geoshift.denoise(terrain, method="taubin", iterations=2, lambda_=0.4, mu=-0.45)
+    assert smoothed.stats["method"] == "taubin" and smoothed.stats["iterations"] == 2
+    fixed = geoshift.denoise(terrain, fixed_passes=1, hs=0.8)
+    assert fixed.stats["passes"] == 1
+
+
+def test_param_specs_give_the_options_structs_defaults():
+    specs = geoshift.param_specs()
+    assert {"noise", "smooth", "curvature", "geodesic", "filter", "denoise", "wavelet"} <= set(specs)
+    d = geoshift.DenoiseOptions()
+    p = specs["denoise"]["params"]
+    assert p["strength"]["default"] == d.strength
+    assert p["hs"]["default"] == d.neighborhood.spatial_bandwidth
+    assert p["hr"]["default"] == d.range_bandwidths[0]
+    assert p["passes"]["cases"][0]["default"] == d.paper.passes
+    assert p["method"]["values"] == ["meanshift", "bilateral", "taubin"]
+    assert specs["smooth"]["params"]["mu"]["default"] == geoshift.TaubinOptions().mu

@@ -111,7 +111,7 @@ test('bad denoise parameters are refused, naming what is wrong', () => {
     assert.match(r.error, pattern);
   };
   expectError({ method: 'median' }, /parameter method = "median" is not one of meanshift, bilateral, taubin/);
-  expectError({ method: 'bilateral', levels: 1 }, /levels apply to method "meanshift" only/);
+  expectError({ method: 'bilateral', levels: 1 }, /parameter levels belongs to method "meanshift"/);
   expectError({ method: 'taubin', hs: 3 }, /parameter hs belongs to method "meanshift"/);
   expectError({ normalIterations: 3 }, /normalIterations belongs to method "bilateral"/);
   expectError({ method: 'taubin', vertexIterations: 3 }, /vertexIterations does not apply/);

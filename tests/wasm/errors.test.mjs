@@ -11,14 +11,14 @@ before(async () => { geoshift = await loadGeoshift(); });
 const triangle = () => new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0]);
 
 test('an index out of range names the face', () => {
-  const r = geoshift.processMesh(triangle(), new Uint32Array([0, 1, 2, 2, 1, 7]));
+  const r = geoshift.loadMesh(triangle(), new Uint32Array([0, 1, 2, 2, 1, 7]));
   assert.equal(r.ok, false);
   assert.match(r.error, /face 1\b/);
   assert.match(r.error, /\b7\b/);
 });
 
 test('an index too large for the core (> INT_MAX) names the face too', () => {
-  const r = geoshift.processMesh(triangle(), new Uint32Array([0, 1, 2, 2, 1, 0xffffffff]));
+  const r = geoshift.loadMesh(triangle(), new Uint32Array([0, 1, 2, 2, 1, 0xffffffff]));
   assert.equal(r.ok, false);
   assert.match(r.error, /face 1\b/);
   assert.match(r.error, /4294967295/);
@@ -27,7 +27,7 @@ test('an index too large for the core (> INT_MAX) names the face too', () => {
 test('a NaN coordinate names the vertex', () => {
   const positions = triangle();
   positions[3 * 2 + 1] = NaN;
-  const r = geoshift.processMesh(positions, new Uint32Array([0, 1, 2, 2, 1, 3]));
+  const r = geoshift.loadMesh(positions, new Uint32Array([0, 1, 2, 2, 1, 3]));
   assert.equal(r.ok, false);
   assert.match(r.error, /vertex 2\b/);
 });
@@ -35,7 +35,7 @@ test('a NaN coordinate names the vertex', () => {
 test('an infinite coordinate names the vertex', () => {
   const positions = triangle();
   positions[3 * 3] = Infinity;
-  const r = geoshift.processMesh(positions, new Uint32Array([0, 1, 2, 2, 1, 3]));
+  const r = geoshift.loadMesh(positions, new Uint32Array([0, 1, 2, 2, 1, 3]));
   assert.equal(r.ok, false);
   assert.match(r.error, /vertex 3\b/);
 });
@@ -46,7 +46,7 @@ test('empty input is refused', () => {
     [triangle(), new Uint32Array()],
     [new Float32Array(), new Uint32Array([0, 1, 2])],
   ]) {
-    const r = geoshift.processMesh(positions, indices);
+    const r = geoshift.loadMesh(positions, indices);
     assert.equal(r.ok, false, `${positions.length} numbers, ${indices.length} indices`);
     assert.equal(typeof r.error, 'string');
     assert.ok(r.error.length > 0);
@@ -54,21 +54,23 @@ test('empty input is refused', () => {
 });
 
 test('wrong argument types and lengths are refused with a plain message', () => {
-  let r = geoshift.processMesh([0, 0, 0, 1, 0, 0, 0, 1, 0], new Uint32Array([0, 1, 2]));
+  let r = geoshift.loadMesh([0, 0, 0, 1, 0, 0, 0, 1, 0], new Uint32Array([0, 1, 2]));
   assert.deepEqual(r, { ok: false, error: 'positions must be a Float32Array' });
-  r = geoshift.processMesh(triangle(), new Int32Array([0, 1, 2]));
+  r = geoshift.loadMesh(triangle(), new Int32Array([0, 1, 2]));
   assert.deepEqual(r, { ok: false, error: 'indices must be a Uint32Array' });
-  r = geoshift.processMesh(new Float32Array(10), new Uint32Array([0, 1, 2]));
+  r = geoshift.loadMesh(new Float32Array(10), new Uint32Array([0, 1, 2]));
   assert.equal(r.ok, false);
   assert.match(r.error, /multiple of 3/);
-  r = geoshift.processMesh(triangle(), new Uint32Array([0, 1, 2, 3]));
+  r = geoshift.loadMesh(triangle(), new Uint32Array([0, 1, 2, 3]));
   assert.equal(r.ok, false);
   assert.match(r.error, /multiple of 3/);
 });
 
 test('the module still works after errors', () => {
   const cube = unweldedCube();
-  const r = geoshift.processMesh(cube.positions, cube.indices);
+  const r = geoshift.loadMesh(cube.positions, cube.indices);
   assert.equal(r.ok, true, r.error);
   assert.equal(r.weldedVertexCount, 8);
+  assert.equal(geoshift.run(r.handle, 'curvature', {}).ok, true);
+  geoshift.freeMesh(r.handle);
 });

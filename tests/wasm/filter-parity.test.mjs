@@ -163,7 +163,7 @@ test('bad parameters are refused, naming what is wrong, and leave the mesh as it
     assert.match(r.error, pattern);
   };
   expectError({ levels: -1 }, /parameter levels/);
-  expectError({ alpha: [1, 0] }, /parameter alpha must be a number/);
+  expectError({ alpha: [1, 'x'] }, /parameter alpha must be a number or a list of numbers/);
   expectError({ mode: 'ms', passes: 3 }, /mode "ms" runs one pass/);
   expectError({ mode: 'fast' }, /parameter mode = "fast" is not one of ms, bms/);
   expectError({ signal: 'nope' }, /no attribute 'nope'/);

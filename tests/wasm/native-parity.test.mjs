@@ -41,8 +41,15 @@ for (const [name, make, skip] of meshes) {
     const mesh = make();
     const off = path.join(dir, `${name.split(' ')[0].replace(/\W/g, '_')}.off`);
     writeOff(off, mesh);
-    const wasm = geoshift.processMesh(mesh.positions, mesh.indices);
-    assert.equal(wasm.ok, true, wasm.error);
+    const loaded = geoshift.loadMesh(mesh.positions, mesh.indices);
+    assert.equal(loaded.ok, true, loaded.error);
+    const wasm = {};
+    for (const [kind, field] of Object.entries(kinds)) {
+      const r = geoshift.run(loaded.handle, 'curvature', { kind });
+      assert.equal(r.ok, true, r.error);
+      wasm[field] = r.scalars._CURVATURE;
+    }
+    geoshift.freeMesh(loaded.handle);
 
     for (const [kind, field] of Object.entries(kinds)) {
       const native = nativeCurvature(off, kind);

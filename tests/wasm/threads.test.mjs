@@ -29,9 +29,20 @@ test('the threaded module really runs with threads', () => {
 
 for (const [name, mesh] of meshes()) {
   test(`threaded and single-threaded agree bit for bit: ${name}`, () => {
-    const a = single.processMesh(mesh.positions, mesh.indices);
-    const b = threaded.processMesh(mesh.positions, mesh.indices);
-    assert.equal(a.ok, true, a.error);
+    // The mesh as loaded, and its curvatures (op "curvature"), from each build.
+    const loadAndMeasure = (module) => {
+      const { handle, ...loaded } = module.loadMesh(mesh.positions, mesh.indices);
+      assert.equal(loaded.ok, true, loaded.error);
+      for (const kind of ['mean', 'gauss', 'abs']) {
+        const r = module.run(handle, 'curvature', { kind });
+        assert.equal(r.ok, true, r.error);
+        loaded[kind] = r.scalars._CURVATURE;
+      }
+      module.freeMesh(handle);
+      return loaded;
+    };
+    const a = loadAndMeasure(single);
+    const b = loadAndMeasure(threaded);
     assert.deepStrictEqual(b, a);
     // deepStrictEqual compares float arrays with ===, blind to -0 vs 0 and failing on NaN: compare
     // the bytes as well.

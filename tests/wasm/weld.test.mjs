@@ -8,10 +8,25 @@ import { loadGeoshift, unweldedCube, cubeCorners } from './support.mjs';
 let geoshift;
 before(async () => { geoshift = await loadGeoshift(); });
 
+// The mesh as loadMesh builds it, with its three curvatures per caller vertex (the op "curvature").
+function curvaturesOf(positions, indices) {
+  const r = geoshift.loadMesh(positions, indices);
+  assert.equal(r.ok, true, r.error);
+  const kinds = { meanCurvature: 'mean', gaussianCurvature: 'gauss', absoluteCurvature: 'abs' };
+  for (const [name, kind] of Object.entries(kinds)) {
+    const run = geoshift.run(r.handle, 'curvature', { kind });
+    assert.equal(run.ok, true, run.error);
+    r[name] = run.scalars._CURVATURE;
+  }
+  geoshift.freeMesh(r.handle);
+  return r;
+}
+
 test('an unwelded cube (36 vertices, 12 faces) welds to 8 corners', () => {
   const cube = unweldedCube();
-  const r = geoshift.processMesh(cube.positions, cube.indices);
+  const r = geoshift.loadMesh(cube.positions, cube.indices);
   assert.equal(r.ok, true, r.error);
+  geoshift.freeMesh(r.handle);
   assert.equal(r.weldedVertexCount, 8);
   assert.equal(r.report.weldedVertices, 36 - 8);
   assert.equal(r.report.nonManifoldEdges, 0);
@@ -37,8 +52,7 @@ test('an unwelded cube (36 vertices, 12 faces) welds to 8 corners', () => {
 
 test('curvature is identical at seams for coincident caller vertices', () => {
   const cube = unweldedCube();
-  const r = geoshift.processMesh(cube.positions, cube.indices);
-  assert.equal(r.ok, true, r.error);
+  const r = curvaturesOf(cube.positions, cube.indices);
   for (const name of ['meanCurvature', 'gaussianCurvature', 'absoluteCurvature']) {
     const values = r[name];
     assert.ok(values instanceof Float32Array, name);
@@ -59,12 +73,11 @@ test('curvature is identical at seams for coincident caller vertices', () => {
 
 test('a welded input is left as it is', () => {
   const cube = unweldedCube();
-  const welded = geoshift.processMesh(cube.positions, cube.indices);
+  const welded = curvaturesOf(cube.positions, cube.indices);
   const positions = new Float32Array(3 * 8);
   for (let v = 0; v < 36; ++v) positions.set(cube.positions.subarray(3 * v, 3 * v + 3), 3 * welded.vertexOf[v]);
   const indices = Uint32Array.from(cube.indices, (v) => welded.vertexOf[v]);
-  const r = geoshift.processMesh(positions, indices);
-  assert.equal(r.ok, true, r.error);
+  const r = curvaturesOf(positions, indices);
   assert.equal(r.report.weldedVertices, 0);
   assert.deepEqual([...r.vertexOf], [0, 1, 2, 3, 4, 5, 6, 7]);
   for (const name of ['meanCurvature', 'gaussianCurvature', 'absoluteCurvature']) {

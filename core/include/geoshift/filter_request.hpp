@@ -8,8 +8,11 @@
 #include <string_view>
 #include <vector>
 
+#include "geoshift/hybrid.hpp"
 #include "geoshift/mean_shift.hpp"
 #include "geoshift/mesh.hpp"
+#include "geoshift/params.hpp"
+#include "geoshift/presets.hpp"
 #include "geoshift/progress.hpp"
 
 namespace geoshift {
@@ -60,5 +63,16 @@ FilterSignal filterSignal(const Mesh& mesh, const std::string& signal, const Sig
 // "bms" blurring passes (`passes`, else 10 when `base` is 1), "" `passes` alone (else `base`,
 // the preset's count or 1). Throws InputError for another mode.
 int filterPasses(std::string_view mode, std::optional<int> passes, int base = 1);
+
+// A request of the filter op (its table: paramSpecsOf("filter"), params.hpp) over a preset's
+// values (the CLI's --preset; none: the table's defaults): what to filter and how.
+struct FilterRequest {
+  std::string signal;                    // comma-separated names (filterSignal)
+  MeanShiftOptions options;              // without channels: filterSignal gives them
+  std::optional<double> rangeBandwidth;  // given, or the preset's: replaces every signal's own h_r
+  HybridOptions hybrid;                  // levels > 0: the hybrid filter
+};
+// InputError for a mode and pass count that do not go together (filterPasses).
+FilterRequest filterRequest(const ParamRequest& request, const FilterPreset* preset = nullptr);
 
 }  // namespace geoshift

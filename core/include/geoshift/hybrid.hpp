@@ -15,6 +15,10 @@ struct HybridOptions {
   // false keeps the input positions and filters the signal only.
   bool filterGeometry = false;
   WaveletOptions wavelet;          // its `levels` is replaced by `levels` above
+  // > 0: the mean shift's spatial options (h_s, r, ε) are multiples of this absolute length instead
+  // of the filtered (coarse) mesh's average edge length, so that pieces of one surface (tiles,
+  // docs/tiles.md) filter with the same bandwidths.
+  double unit = 0;
 };
 
 struct HybridResult {

@@ -26,6 +26,7 @@ try {
   const stages = new Set<string>();
   const result: MeshResult = await gs.denoise(mesh, { onProgress: (_fraction, stage) => stages.add(stage) });
   const taubin = await gs.denoise(mesh, { method: 'taubin', iterations: 4 });
+  const wavelet = await gs.wavelet(mesh, { levels: 2, alpha: [0, 0.5] });
 
   // Cancel a long run after its first progress report; the next job still works.
   const controller = new AbortController();
@@ -43,6 +44,7 @@ try {
     info: gs.info,
     positions: Array.from(result.positions),
     taubin: Array.from(taubin.positions),
+    wavelet: Array.from(wavelet.positions),
     colors: Array.from(colors.colors ?? []),
     stages: [...stages],
     stats: result.stats,
