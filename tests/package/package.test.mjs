@@ -8,6 +8,7 @@
 //   node --test tests/package/       (needs the wasm build, package/dist and the native CLI)
 import { execFileSync, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
+import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { gzipSync } from 'node:zlib';
@@ -271,5 +272,53 @@ test('the Vite dev server serves the installed package as it is (pre-bundled by 
     assert.deepEqual(errors.filter((e) => !/\[vite\]/.test(e)), []);
   } finally {
     await close();
+  }
+});
+
+/** A static server of `root` on a free port; `headers` on every answer. */
+async function staticServer(root, headers) {
+  const types = { '.js': 'text/javascript', '.cjs': 'text/javascript', '.wasm': 'application/wasm', '.html': 'text/html' };
+  const server = http.createServer((request, response) => {
+    const file = path.join(root, decodeURIComponent(new URL(request.url, 'http://x').pathname));
+    if (!file.startsWith(root) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
+      response.writeHead(404, headers).end();
+      return;
+    }
+    response.writeHead(200, { 'Content-Type': types[path.extname(file)] ?? 'application/octet-stream', ...headers });
+    fs.createReadStream(file).pipe(response);
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  return { url: `http://127.0.0.1:${server.address().port}`, close: () => new Promise((resolve) => server.close(resolve)) };
+}
+
+test('no bundler, the package served from another origin (as from a CDN): a cross-origin-isolated page imports it and denoises', async () => {
+  // The CDN: the installed package's files, with CORS and CORP so that a COEP page may use them.
+  const cdn = await staticServer(path.join(dir, 'node_modules/geoshift'), { 'Access-Control-Allow-Origin': '*', 'Cross-Origin-Resource-Policy': 'cross-origin' });
+  const site = fs.mkdtempSync(path.join(dir, 'site-'));
+  fs.writeFileSync(path.join(site, 'index.html'), `<!doctype html><html><head><link rel="icon" href="data:," /></head><body><script type="module">
+    import { createGeoshift } from '${cdn.url}/dist/index.js';
+    window.denoise = async (positions, indices) => {
+      const gs = await createGeoshift({ threads: 2 });
+      const r = await gs.denoise({ positions: new Float32Array(positions), indices: new Uint32Array(indices) });
+      gs.terminate();
+      return { info: gs.info, positions: Array.from(r.positions) };
+    };
+    document.title = 'ready';
+  </script></body></html>`);
+  const page = await browser.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  const host = await staticServer(site, ISOLATION);
+  try {
+    await page.goto(`${host.url}/index.html`);
+    await page.waitForFunction(() => document.title === 'ready');
+    const r = await page.evaluate(([p, i]) => window.denoise(p, i), [Array.from(noisy.positions), Array.from(noisy.indices)]);
+    assert.equal(r.info.threaded, true);
+    assertClose(assert, Float32Array.from(r.positions), cli.default, 'denoised from a CDN (Chromium vs CLI)');
+    assert.deepEqual(errors, []);
+  } finally {
+    await page.close();
+    await host.close();
+    await cdn.close();
   }
 });
