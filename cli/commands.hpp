@@ -47,6 +47,9 @@ MeshBuild buildPart(const Document& doc, const MeshPart& part);
 // After the welded mesh's positions changed: positions back into the part's own layout, and its
 // normals (if it has any) recomputed on the part's own, unwelded faces so hard edges stay hard.
 void writeBack(MeshPart& part, const MeshBuild& build);
+// After the part's positions changed: its normals (if it has any) those of the new positions, on
+// its own, unwelded faces (docs/io.md#normals).
+void recomputeNormals(MeshPart& part);
 
 // --- options from the core's parameter tables (params.hpp) ---
 

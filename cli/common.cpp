@@ -52,6 +52,10 @@ MeshBuild buildPart(const Document& doc, const MeshPart& part) {
 
 void writeBack(MeshPart& part, const MeshBuild& build) {
   for (size_t i = 0; i < part.positions.size(); ++i) part.positions[i] = build.mesh.position(build.vertexOf[i]);
+  recomputeNormals(part);
+}
+
+void recomputeNormals(MeshPart& part) {
   if (part.normals.empty()) return;
   const MeshBuild own = buildMesh(partSoup(part), MeshBuildOptions::withoutWelding());
   const std::vector<Vec3> n = vertexNormals(own.mesh);

@@ -73,6 +73,7 @@ HybridResult filterPart(const Document& doc, MeshPart& part, const MeshBuild& bu
   }
   if (settings.hybrid.filterGeometry) {
     for (size_t i = 0; i < part.positions.size(); ++i) part.positions[i] = hybrid.positions[build.vertexOf[i]];
+    recomputeNormals(part);  // a filtered "normal" signal, below, replaces them
   }
   const AttributeSet& filtered = hybrid.signal;
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
 
@@ -10,22 +11,10 @@ namespace geoshift {
 namespace {
 
 void checkOptions(const BilateralNormalOptions& o) {
-  if (o.normalIterations < 0) {
-    throw InputError("bilateral normal filter: normal iterations must be >= 0 (got " +
-                     std::to_string(o.normalIterations) + ")");
-  }
-  if (!(o.sigmaSpatial >= 0) || !std::isfinite(o.sigmaSpatial)) {
-    throw InputError("bilateral normal filter: spatial sigma must be >= 0 AEL (got " +
-                     std::to_string(o.sigmaSpatial) + ")");
-  }
-  if (!(o.sigmaRange > 0) || !std::isfinite(o.sigmaRange)) {
-    throw InputError("bilateral normal filter: range sigma must be > 0 (got " +
-                     std::to_string(o.sigmaRange) + ")");
-  }
-  if (o.vertexUpdate.iterations < 0) {
-    throw InputError("bilateral normal filter: vertex iterations must be >= 0 (got " +
-                     std::to_string(o.vertexUpdate.iterations) + ")");
-  }
+  requireAtLeast("bilateral normal filter: normal iterations", o.normalIterations, 0);
+  requireAtLeast("bilateral normal filter: spatial sigma (AEL)", o.sigmaSpatial, 0);
+  requirePositive("bilateral normal filter: range sigma", o.sigmaRange);
+  requireAtLeast("bilateral normal filter: vertex iterations", o.vertexUpdate.iterations, 0);
 }
 
 Vec3 centroid(const Mesh& mesh, int f) {
@@ -88,10 +77,7 @@ std::vector<Vec3> bilateralFilterFaceNormals(const Mesh& mesh, std::vector<Vec3>
     throw InputError("bilateral normal filter: " + std::to_string(normals.size()) + " normals for " +
                      std::to_string(nf) + " faces");
   }
-  if (!(sigmaSpatial > 0) || !std::isfinite(sigmaSpatial)) {
-    throw InputError("bilateral normal filter: spatial sigma must be > 0 (got " +
-                     std::to_string(sigmaSpatial) + ")");
-  }
+  requirePositive("bilateral normal filter: spatial sigma", sigmaSpatial);
   for (int f = 0; f < nf; ++f) {
     if (!normals[f].allFinite()) {
       throw InputError("bilateral normal filter: normal of face " + std::to_string(f) + " is not finite");

@@ -16,6 +16,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geodesic.hpp"
 #include "logmap_detail.hpp"
@@ -345,11 +346,7 @@ namespace {
 
 void checkRadius(double radius) {
   // +inf is allowed: the whole connected component.
-  if (!(radius > 0)) {
-    std::ostringstream s;
-    s << "log map: radius must be positive (got " << radius << ")";
-    throw InputError(s.str());
-  }
+  if (!(radius > 0)) requirePositive("log map: radius", radius);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
 #include "mean_shift_climb.hpp"
@@ -15,49 +16,24 @@ namespace geoshift {
 
 using namespace mean_shift_detail;
 
-void interpolateSignal(const Mesh& mesh, const Attribute& a, const SurfacePoint& point, double* out) {
-  const Face& f = mesh.face(point.face);
-  const int dim = a.dim;
-  for (int d = 0; d < dim; ++d)
-    out[d] = point.bary[0] * a.row(f[0])[d] + point.bary[1] * a.row(f[1])[d] + point.bary[2] * a.row(f[2])[d];
-  if (a.kind != AttributeKind::UnitVector) return;
-  double n2 = 0;
-  for (int d = 0; d < dim; ++d) n2 += out[d] * out[d];
-  if (n2 > 1e-24) {
-    const double s = 1 / std::sqrt(n2);
-    for (int d = 0; d < dim; ++d) out[d] *= s;
-    return;
-  }
-  int k = 0;
-  for (int c = 1; c < 3; ++c)
-    if (point.bary[c] > point.bary[k]) k = c;
-  std::copy(a.row(f[k]), a.row(f[k]) + dim, out);
-}
-
 namespace {
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw InputError("mean shift: " + what);
 }
 
-std::string number(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
 
 Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const MeanShiftOptions& o) {
   const Mesh& mesh = g.mesh();
   require(signal.vertexCount() == mesh.vertexCount(),
           "the signal has " + std::to_string(signal.vertexCount()) + " vertices, the mesh " +
               std::to_string(mesh.vertexCount()));
-  const auto positive = [](double x) { return std::isfinite(x) && x > 0; };
-  require(positive(o.spatialBandwidth), "spatial bandwidth h_s must be positive (got " + number(o.spatialBandwidth) + ")");
-  require(o.radius == 0 || positive(o.radius), "radius must be positive, or 0 for 3 h_s (got " + number(o.radius) + ")");
-  require(positive(o.epsilon), "epsilon must be positive (got " + number(o.epsilon) + ")");
-  require(o.maxIterations >= 1, "k_max must be at least 1 (got " + std::to_string(o.maxIterations) + ")");
-  require(o.passes >= 1, "passes must be at least 1 (got " + std::to_string(o.passes) + ")");
-  require(std::isfinite(o.tuning.recentre) && o.tuning.recentre >= 0, "recentre must be a fraction >= 0 (got " + number(o.tuning.recentre) + ")");
+  requirePositive("mean shift: spatial bandwidth h_s", o.spatialBandwidth);
+  if (o.radius != 0) requirePositive("mean shift: radius (0 for 3 h_s)", o.radius);
+  requirePositive("mean shift: epsilon", o.epsilon);
+  requireAtLeast("mean shift: k_max", o.maxIterations, 1);
+  requireAtLeast("mean shift: passes", o.passes, 1);
+  requireAtLeast("mean shift: recentre", o.tuning.recentre, 0);
 
   std::vector<SignalChannel> wanted = o.channels;
   if (wanted.empty())
@@ -68,7 +44,7 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
   for (const SignalChannel& c : wanted) {
     const Attribute& a = signal.get(c.attribute);
     const double hr = c.rangeBandwidth > 0 ? c.rangeBandwidth : o.rangeBandwidth;
-    require(positive(hr), "range bandwidth h_r of '" + c.attribute + "' must be positive (got " + number(hr) + ")");
+    requirePositive("mean shift: range bandwidth h_r of '" + c.attribute + "'", hr);
     require(c.kernel != RangeKernel::NormalSimilarity || a.kind == AttributeKind::UnitVector,
             "the normal-similarity kernel needs a unit-vector attribute; '" + c.attribute + "' is not one");
     for (int v = 0; v < a.vertexCount(); ++v)
@@ -100,9 +76,8 @@ Setup makeSetup(const SurfaceGeometry& g, const AttributeSet& signal, const Mean
   s.exact = o.tuning.exactCharts;
   s.drift = s.exact ? 0 : o.tuning.recentre * s.r;
   s.chartRadius = s.r + s.drift;
-  require(std::isfinite(o.tuning.chartCell) && o.tuning.chartCell >= 0, "chartCell must be >= 0 (got " + number(o.tuning.chartCell) + ")");
-  require(std::isfinite(o.tuning.chartDistortion) && o.tuning.chartDistortion >= 0,
-          "chartDistortion must be >= 0 (got " + number(o.tuning.chartDistortion) + ")");
+  requireAtLeast("mean shift: chartCell", o.tuning.chartCell, 0);
+  requireAtLeast("mean shift: chartDistortion", o.tuning.chartDistortion, 0);
   if (!s.exact && o.tuning.chartCell > 0) {
     s.cell = o.tuning.chartCell * s.hs;
     s.distortion = o.tuning.chartDistortion;

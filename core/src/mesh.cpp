@@ -6,6 +6,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 
 namespace geoshift {
@@ -314,8 +315,7 @@ std::int64_t bitsOf(double x) {
 
 Weld weld(const std::vector<Vec3>& positions, const WeldOptions& options) {
   requireFinite(positions);
-  if (std::isnan(options.tolerance) || std::isinf(options.tolerance))
-    throw InputError("weld tolerance must be a finite number, not " + std::to_string(options.tolerance));
+  requireFinite("weld tolerance", options.tolerance);
   Weld w;
   w.vertexOf.resize(positions.size());
   std::unordered_map<std::array<std::int64_t, 3>, int, KeyHash> cells;

@@ -82,8 +82,9 @@ OpParamSpecs noiseSpecs() {
           {
               P("amount", T::Number, "magnitude in multiples of the average edge length (AEL)").byDefault(d.amount).range(0, 100),
               P("distribution", T::Enum,
-                "fixed: |d| = amount AEL; uniform: |d| in [0, amount AEL]; gaussian: sigma = amount AEL")
-                  .choices({"fixed", "uniform", "gaussian"}).byDefault(std::string("fixed")).cli("dist"),
+                "fixed: |d| = amount AEL; uniform: |d| in [0, amount AEL]; gaussian: sigma = amount AEL; impulsive: "
+                "a tenth of the vertices, sigma = amount AEL")
+                  .choices({"fixed", "uniform", "gaussian", "impulsive"}).byDefault(std::string("fixed")).cli("dist"),
               P("direction", T::Enum, "random: a uniformly random direction; normal: along the vertex normal")
                   .choices({"random", "normal"}).byDefault(std::string("random")),
               P("seed", T::Integer, "random seed: the same seed gives the same noise natively and in wasm")

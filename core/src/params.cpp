@@ -31,13 +31,22 @@ std::string cliOptionName(const ParamSpec& spec) {
   return out;
 }
 
+// Strings appended piece by piece: GCC 12 warns (-Wrestrict, wrongly) about chains of operator+.
 std::string formatValue(const ParamValue& value) {
   if (const bool* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
   if (const double* x = std::get_if<double>(&value)) return formatNumber(*x);
-  if (const std::string* s = std::get_if<std::string>(&value)) return "\"" + *s + "\"";
+  if (const std::string* s = std::get_if<std::string>(&value)) {
+    std::string quoted = "\"";
+    quoted += *s;
+    quoted += '"';
+    return quoted;
+  }
   if (const std::vector<double>* v = std::get_if<std::vector<double>>(&value)) {
     std::string out;
-    for (double x : *v) out += (out.empty() ? "" : ",") + formatNumber(x);
+    for (double x : *v) {
+      if (!out.empty()) out += ',';
+      out += formatNumber(x);
+    }
     return out;
   }
   return "?";

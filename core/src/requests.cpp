@@ -7,9 +7,10 @@ NoiseOptions noiseOptions(const ParamRequest& r) {
   NoiseOptions o;
   o.amount = r.number("amount");
   const std::string distribution = r.text("distribution");
-  o.distribution = distribution == "uniform"    ? NoiseDistribution::Uniform
-                   : distribution == "gaussian" ? NoiseDistribution::Gaussian
-                                                : NoiseDistribution::Fixed;
+  o.distribution = distribution == "uniform"     ? NoiseDistribution::Uniform
+                   : distribution == "gaussian"  ? NoiseDistribution::Gaussian
+                   : distribution == "impulsive" ? NoiseDistribution::Impulsive
+                                                 : NoiseDistribution::Fixed;
   o.direction = r.text("direction") == "normal" ? NoiseDirection::Normal : NoiseDirection::Random;
   o.seed = static_cast<std::uint64_t>(r.integer64("seed"));
   return o;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 
 namespace geoshift {
@@ -100,18 +101,13 @@ void laplacian(const std::vector<Vec3>& x, const Stencil& s, LaplacianWeights we
 }  // namespace
 
 void taubinSmooth(Mesh& mesh, const TaubinOptions& options, const Progress& progress) {
-  if (options.iterations < 0) {
-    throw InputError("Taubin: iterations must be >= 0 (got " + std::to_string(options.iterations) +
-                     ")");
-  }
-  if (!(options.lambda > 0) || !std::isfinite(options.lambda)) {
-    throw InputError("Taubin: lambda must be > 0 (got " + std::to_string(options.lambda) + ")");
-  }
+  requireAtLeast("Taubin: iterations", options.iterations, 0);
+  requirePositive("Taubin: lambda", options.lambda);
   // μ < −λ < 0 makes the pass-band k_PB = 1/λ + 1/μ positive: the low frequencies pass and the
   // mesh does not shrink (Taubin 1995, section 4).
   if (!(options.mu < -options.lambda) || !std::isfinite(options.mu)) {
-    throw InputError("Taubin: mu must be < -lambda (got mu " + std::to_string(options.mu) +
-                     ", lambda " + std::to_string(options.lambda) + ")");
+    throw InputError("Taubin: mu must be < -lambda (got mu " + formatNumber(options.mu) + ", lambda " +
+                     formatNumber(options.lambda) + ")");
   }
   const Stencil stencil = buildStencil(mesh);
   // Work on a copy: a cancelled call must leave the mesh as it was.

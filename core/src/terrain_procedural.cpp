@@ -5,6 +5,7 @@
 #include <climits>
 #include <cmath>
 
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/terrain.hpp"
 
@@ -139,7 +140,7 @@ TerrainMesh proceduralTerrain(const TerrainOptions& o, const Progress& progress)
   out.attributes.set("_CLASS", 1, AttributeKind::Euclidean, std::move(cls));
   out.report.pointsRead = out.report.pointsUsed = static_cast<std::int64_t>(nv);
   out.report.notes.push_back("procedural terrain: seed " + std::to_string(o.seed) + ", " + std::to_string(octaves) +
-                             " octaves, relief " + std::to_string(relief) + " m");
+                             " octaves, relief " + formatNumber(relief) + " m");
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
 #include "geoshift/wavelet.hpp"
@@ -330,16 +331,12 @@ WaveletLevelMesh snapshotMesh(const std::vector<int>& live, const CollapseMesh& 
   return s;
 }
 
-}  // namespace
-
-Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const WaveletOptions& options,
-                        const Progress& progress) {
-  if (options.levels < 0)
-    throw InputError("wavelet analysis: levels must be >= 0 (got " + std::to_string(options.levels) + ")");
+// The options and signals analyze() accepts (its contract in wavelet.hpp).
+void checkAnalysis(const Mesh& mesh, const AttributeSet& signals, const WaveletOptions& options) {
+  requireAtLeast("wavelet analysis: levels", options.levels, 0);
   if (!(options.maxNormalChange > 0 && options.maxNormalChange < 90))
-    throw InputError("wavelet analysis: maxNormalChange must be in (0, 90) degrees");
-  if (!std::isfinite(options.boundaryAngle))
-    throw InputError("wavelet analysis: boundaryAngle must be finite");
+    throw InputError("wavelet analysis: maxNormalChange must be in (0, 90) degrees (got " + formatNumber(options.maxNormalChange) + ")");
+  requireFinite("wavelet analysis: boundaryAngle", options.boundaryAngle);
   const int n = mesh.vertexCount();
   if (signals.size() > 0 && signals.vertexCount() != n)
     throw InputError("wavelet analysis: the attributes have " + std::to_string(signals.vertexCount()) +
@@ -364,16 +361,13 @@ Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const Wav
         throw InputError("wavelet analysis: costBounds of level " + std::to_string(l) +
                          " must be finite and ascending (bound " + std::to_string(k) + ")");
   }
+}
 
-  Multiresolution mr;
-  mr.fine = mesh;
-  mr.requestedLevels = options.levels;
-  mr.layout.push_back({"position", 3, AttributeKind::Euclidean, {}});
-  for (const Attribute& a : signals.all()) mr.layout.push_back({a.name, a.dim, a.kind, {}});
-
-  Analyzer an(mesh, options, progress);
-  const int C = an.C = mr.channelCount();
-  an.F.resize(static_cast<size_t>(n) * C);
+// The analyzer's start: one row per vertex (position, then every signal's channels in the layout's
+// order), the mixed Voronoi areas, every vertex live.
+void startAnalyzer(Analyzer& an, const Mesh& mesh, const AttributeSet& signals) {
+  const int n = mesh.vertexCount();
+  an.F.resize(static_cast<size_t>(n) * an.C);
   for (int v = 0; v < n; ++v) {
     double* r = an.row(v);
     r[0] = mesh.position(v).x(), r[1] = mesh.position(v).y(), r[2] = mesh.position(v).z();
@@ -389,21 +383,12 @@ Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const Wav
   an.status.assign(n, 0);
   an.banned.assign(n, 0);
   an.hot.assign(n, 0);
-  if (options.keepLevelMeshes) mr.levelMeshes.push_back({mesh, an.live, {}});
+}
 
-  for (int l = 0; l < options.levels; ++l) {
-    progress.step(static_cast<double>(l) / options.levels, "wavelet analysis");
-    WaveletLevel L;
-    std::vector<int> parent;
-    if (!an.level(l, L, options.keepLevelMeshes ? &parent : nullptr)) break;
-    mr.levels.push_back(std::move(L));
-    if (options.keepLevelMeshes) {
-      mr.levelMeshes.push_back(snapshotMesh(an.live, an.cm, an.F, C, n));
-      mr.levelMeshes.back().parentFace = std::move(parent);
-    }
-  }
-
-  WaveletLevelMesh coarse = snapshotMesh(an.live, an.cm, an.F, C, n);
+// The coarse mesh, its integrals and its attributes (unit vectors re-normalised, their norms kept
+// for synthesis) from the analyzer's live vertices.
+void finishCoarse(Multiresolution& mr, Analyzer& an, const AttributeSet& signals, int n) {
+  WaveletLevelMesh coarse = snapshotMesh(an.live, an.cm, an.F, an.C, n);
   mr.coarse = std::move(coarse.mesh);
   mr.coarseToFine = an.live;
   const int nc = static_cast<int>(an.live.size());
@@ -431,6 +416,36 @@ Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const Wav
     mr.coarseAttributes.set(a.name, a.dim, a.kind, std::move(values));
     c0 += a.dim;
   }
+}
+
+}  // namespace
+
+Multiresolution analyze(const Mesh& mesh, const AttributeSet& signals, const WaveletOptions& options,
+                        const Progress& progress) {
+  checkAnalysis(mesh, signals, options);
+  const int n = mesh.vertexCount();
+  Multiresolution mr;
+  mr.fine = mesh;
+  mr.requestedLevels = options.levels;
+  mr.layout.push_back({"position", 3, AttributeKind::Euclidean, {}});
+  for (const Attribute& a : signals.all()) mr.layout.push_back({a.name, a.dim, a.kind, {}});
+
+  Analyzer an(mesh, options, progress);
+  an.C = mr.channelCount();
+  startAnalyzer(an, mesh, signals);
+  if (options.keepLevelMeshes) mr.levelMeshes.push_back({mesh, an.live, {}});
+  for (int l = 0; l < options.levels; ++l) {
+    progress.step(static_cast<double>(l) / options.levels, "wavelet analysis");
+    WaveletLevel L;
+    std::vector<int> parent;
+    if (!an.level(l, L, options.keepLevelMeshes ? &parent : nullptr)) break;
+    mr.levels.push_back(std::move(L));
+    if (options.keepLevelMeshes) {
+      mr.levelMeshes.push_back(snapshotMesh(an.live, an.cm, an.F, an.C, n));
+      mr.levelMeshes.back().parentFace = std::move(parent);
+    }
+  }
+  finishCoarse(mr, an, signals, n);
   progress.step(1.0, "wavelet analysis");
   return mr;
 }

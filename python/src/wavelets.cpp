@@ -8,7 +8,10 @@
 
 namespace geoshift::python {
 
-void bindWavelets(py::module_& m) {
+namespace {
+
+// geoshift.analyze and Multiresolution.synthesize.
+void bindMultiresolution(py::module_& m) {
   // Wavelets: a Multiresolution of the welded mesh, kept with it.
   struct Analysis {
     std::shared_ptr<Built> built;
@@ -71,6 +74,9 @@ void bindWavelets(py::module_& m) {
     return out;
   });
 
+}
+
+void bindWaveletFilter(py::module_& m) {
   // `geoshift wavelet` on one part (cli/wavelet.cpp): positions and, unless positionsOnly, the
   // colors' change (clamped to [0, 1]) in the caller's layout.
   m.def("_wavelet_filter", [](Built& b, const py::handle& colors, int levels, const std::vector<double>& alpha,
@@ -108,6 +114,13 @@ void bindWavelets(py::module_& m) {
     out["vertex_counts"] = mr.vertexCounts();
     return out;
   });
+}
+
+}  // namespace
+
+void bindWavelets(py::module_& m) {
+  bindMultiresolution(m);
+  bindWaveletFilter(m);
 }
 
 }  // namespace geoshift::python

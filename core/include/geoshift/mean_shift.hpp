@@ -120,8 +120,4 @@ MeanShiftResult meanShift(const SurfaceGeometry& support, const AttributeSet& si
 MeanShiftResult meanShift(const Mesh& mesh, const AttributeSet& signal, const MeanShiftOptions& options = {},
                           const Progress& progress = {});
 
-// The signal's value at a surface point: barycentric interpolation of the three corners, unit
-// vectors re-normalised (falling back to the nearest corner's value when the mean vanishes).
-void interpolateSignal(const Mesh& mesh, const Attribute& attribute, const SurfacePoint& point, double* out);
-
 }  // namespace geoshift

@@ -242,45 +242,46 @@ int sharedAttribute(const tinygltf::Mesh& mesh, const GltfPartBinding& b, const 
   return inconsistent ? -1 : found;
 }
 
-}  // namespace
-
-Document readGltf(const std::string& path, FileFormat format, const ReadOptions& options) {
-  const std::string bytes = readWholeFile(path);
+// The checks tinygltf does not make, or makes with a vaguer message, before it parses: the GLB
+// header (version, length, an empty BIN chunk) and the JSON (checkJson). Returns whether the file
+// is binary (GLB).
+bool checkFileHead(const std::string& path, const std::string& bytes, FileFormat format) {
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
-  if (binary) {
-    // GLB header: magic, version, total length (tinygltf reads version 1 files and reports a short
-    // file only as "Invalid glTF binary").
-    uint32_t header[3] = {};
-    std::memcpy(header, bytes.data(), std::min<size_t>(bytes.size(), sizeof header));
-    if (bytes.size() >= 8 && header[1] != 2)
-      fail(path, "cannot read glTF: GLB version " + std::to_string(header[1]) + "; geoshift reads glTF 2.0 (version 2)");
-    if (bytes.size() >= 12 && header[2] > bytes.size())
-      fail(path, "cannot read glTF: the GLB header says " + std::to_string(header[2]) + " bytes, the file has " +
-                     std::to_string(bytes.size()) + " (truncated file)");
-    // GLB: JSON chunk length at byte 12, chunk data at byte 20.
-    if (bytes.size() >= 20) {
-      uint32_t len = 0;
-      std::memcpy(&len, bytes.data() + 12, 4);
-      // Compared as lengths left after the header, so that nothing wraps where size_t is 32 bits.
-      const size_t afterHeader = bytes.size() - 20;
-      if (len <= afterHeader) checkJson(path, bytes.substr(20, len));
-      // tinygltf refuses an empty BIN chunk as "must have 4 bytes or more, but got 4".
-      uint32_t bin[2] = {};
-      if (len <= afterHeader && afterHeader - len >= 8) std::memcpy(bin, bytes.data() + 20 + len, 8);
-      if (bin[1] == 0x004e4942 && bin[0] == 0)
-        fail(path, "cannot read glTF: the GLB has an empty BIN chunk (0 bytes); a GLB without binary data has no BIN chunk");
-    }
-  } else {
+  if (!binary) {
     const size_t first = bytes.find_first_not_of(" \t\r\n");
     if (format == FileFormat::Glb && (first == std::string::npos || bytes[first] != '{'))
       fail(path, "not a GLB file: it does not start with the 'glTF' signature (nor is it glTF JSON)");
     checkJson(path, bytes);
+    return false;
   }
+  // GLB header: magic, version, total length (tinygltf reads version 1 files and reports a short
+  // file only as "Invalid glTF binary").
+  uint32_t header[3] = {};
+  std::memcpy(header, bytes.data(), std::min<size_t>(bytes.size(), sizeof header));
+  if (bytes.size() >= 8 && header[1] != 2)
+    fail(path, "cannot read glTF: GLB version " + std::to_string(header[1]) + "; geoshift reads glTF 2.0 (version 2)");
+  if (bytes.size() >= 12 && header[2] > bytes.size())
+    fail(path, "cannot read glTF: the GLB header says " + std::to_string(header[2]) + " bytes, the file has " +
+                   std::to_string(bytes.size()) + " (truncated file)");
+  // GLB: JSON chunk length at byte 12, chunk data at byte 20.
+  if (bytes.size() >= 20) {
+    uint32_t len = 0;
+    std::memcpy(&len, bytes.data() + 12, 4);
+    // Compared as lengths left after the header, so that nothing wraps where size_t is 32 bits.
+    const size_t afterHeader = bytes.size() - 20;
+    if (len <= afterHeader) checkJson(path, bytes.substr(20, len));
+    // tinygltf refuses an empty BIN chunk as "must have 4 bytes or more, but got 4".
+    uint32_t bin[2] = {};
+    if (len <= afterHeader && afterHeader - len >= 8) std::memcpy(bin, bytes.data() + 20 + len, 8);
+    if (bin[1] == 0x004e4942 && bin[0] == 0)
+      fail(path, "cannot read glTF: the GLB has an empty BIN chunk (0 bytes); a GLB without binary data has no BIN chunk");
+  }
+  return true;
+}
 
-  auto source = std::make_shared<DocumentSource>();
-  source->format = format;
-  GltfSource& g = source->gltf;
-  g.baseDir = std::filesystem::path(path).parent_path().string();
+// tinygltf's parse into g.model; its warnings, one per line, go to `warnings`.
+void loadModel(const std::string& path, const std::string& bytes, bool binary, GltfSource& g,
+               std::vector<std::string>& warnings) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keepImageBytes, nullptr);
   std::string err, warn;
@@ -291,26 +292,15 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
                                                       static_cast<unsigned>(bytes.size()), g.baseDir);
   while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
   if (!ok) fail(path, "cannot read glTF: " + (err.empty() ? std::string("unknown error") : err));
+  std::istringstream ws(warn);
+  for (std::string line; std::getline(ws, line);)
+    if (!line.empty()) warnings.push_back(path + ": " + line);
+}
 
-  Document doc;
-  doc.path = path;
-  doc.format = format;
-  {
-    std::istringstream ws(warn);
-    for (std::string line; std::getline(ws, line);)
-      if (!line.empty()) doc.warnings.push_back(path + ": " + line);
-  }
-
-  const auto& model = g.model;
-  const auto world = worldMatrices(model, path);
-  std::vector<std::vector<int>> nodesOfMesh(model.meshes.size());
-  for (size_t n = 0; n < model.nodes.size(); ++n)
-    if (model.nodes[n].mesh >= 0 && static_cast<size_t>(model.nodes[n].mesh) < model.meshes.size())
-      nodesOfMesh[model.nodes[n].mesh].push_back(static_cast<int>(n));
-  // Vertices of all instances in world space (what worldSoup and the writers in world space
-  // allocate): bounded like the vertices of one accessor, and by what an int index can address.
-  const size_t worldLimit = std::min<size_t>(options.maxVertices, std::numeric_limits<int>::max());
-  size_t worldVertices = 0;
+// The parts of the model: per mesh, its TRIANGLES primitives grouped by POSITION accessor (the
+// others are passed through with a warning).
+void bindParts(const std::string& path, GltfSource& g, std::vector<std::string>& warnings) {
+  const tinygltf::Model& model = g.model;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     const auto& mesh = model.meshes[m];
     const std::string mlabel = "mesh " + std::to_string(m) + " '" + mesh.name + "'";
@@ -319,14 +309,13 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
       const auto& prim = mesh.primitives[p];
       const std::string plabel = mlabel + " primitive " + std::to_string(p);
       if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {
-        doc.warnings.push_back(path + ": " + plabel + " has mode " + modeName(prim.mode) + " (" +
-                               std::to_string(prim.mode) +
-                               "); passed through untouched (geoshift filters TRIANGLES only)");
+        warnings.push_back(path + ": " + plabel + " has mode " + modeName(prim.mode) + " (" + std::to_string(prim.mode) +
+                           "); passed through untouched (geoshift filters TRIANGLES only)");
         continue;
       }
       const auto pos = prim.attributes.find("POSITION");
       if (pos == prim.attributes.end()) {
-        doc.warnings.push_back(path + ": " + plabel + " has no POSITION; passed through untouched");
+        warnings.push_back(path + ": " + plabel + " has no POSITION; passed through untouched");
         continue;
       }
       // tinygltf does not check accessor indices; .at() below relies on this.
@@ -345,128 +334,189 @@ Document readGltf(const std::string& path, FileFormat format, const ReadOptions&
       g.parts[it->second].primitives.push_back(static_cast<int>(p));
     }
   }
+}
 
-  for (auto& b : g.parts) {
-    const auto& mesh = model.meshes[b.mesh];
+// Reads one bound part after another into MeshParts: positions, triangles, the attributes the
+// filters use, and one instance per node that draws it. Counts the world-space vertices of all
+// instances (what worldSoup and the writers in world space allocate): bounded like the vertices of
+// one accessor, and by what an int index can address.
+class PartReader {
+ public:
+  PartReader(const std::string& path, const tinygltf::Model& model, const ReadOptions& options,
+             std::vector<std::string>& warnings)
+      : path_(path), model_(model), options_(options), warnings_(warnings), world_(worldMatrices(model, path)),
+        nodesOfMesh_(model.meshes.size()),
+        worldLimit_(std::min<size_t>(options.maxVertices, std::numeric_limits<int>::max())) {
+    for (size_t n = 0; n < model.nodes.size(); ++n)
+      if (model.nodes[n].mesh >= 0 && static_cast<size_t>(model.nodes[n].mesh) < model.meshes.size())
+        nodesOfMesh_[model.nodes[n].mesh].push_back(static_cast<int>(n));
+  }
+
+  MeshPart read(GltfPartBinding& b) {
     MeshPart part;
-    part.label = "mesh " + std::to_string(b.mesh) + " '" + mesh.name + "' primitive";
-    if (b.primitives.size() > 1) part.label += "s";
+    part.label = labelOf(b);
+    readPositions(b, part);
+    for (int p : b.primitives) readTriangles(b, p, part);
+    readAttributes(b, part);
+    placeInstances(b, part);
+    return part;
+  }
+
+ private:
+  std::string labelOf(const GltfPartBinding& b) const {
+    std::string label = "mesh " + std::to_string(b.mesh) + " '" + model_.meshes[b.mesh].name + "' primitive";
+    if (b.primitives.size() > 1) label += "s";
     for (size_t i = 0; i < b.primitives.size(); ++i) {
-      part.label += i ? ',' : ' ';
-      part.label += std::to_string(b.primitives[i]);
+      label += i ? ',' : ' ';
+      label += std::to_string(b.primitives[i]);
     }
-    const auto& posAcc = model.accessors.at(b.positionAccessor);
-    if (componentCount(posAcc.type) != 3) fail(path, part.label + ": POSITION is not VEC3");
-    if (posAcc.count > options.maxVertices)
-      fail(path, part.label + " POSITION (accessor " + std::to_string(b.positionAccessor) + ") declares " +
-                     std::to_string(posAcc.count) + " vertices, more than the limit of " +
-                     std::to_string(options.maxVertices) + " (raise it with --max-vertices)");
-    const auto pos = readAccessor(model, b.positionAccessor, path, part.label + " POSITION", false, options.maxVertices);
+    return label;
+  }
+
+  void readPositions(GltfPartBinding& b, MeshPart& part) const {
+    const auto& posAcc = model_.accessors.at(b.positionAccessor);
+    if (componentCount(posAcc.type) != 3) fail(path_, part.label + ": POSITION is not VEC3");
+    if (posAcc.count > options_.maxVertices)
+      fail(path_, part.label + " POSITION (accessor " + std::to_string(b.positionAccessor) + ") declares " +
+                      std::to_string(posAcc.count) + " vertices, more than the limit of " +
+                      std::to_string(options_.maxVertices) + " (raise it with --max-vertices)");
+    const auto pos = readAccessor(model_, b.positionAccessor, path_, part.label + " POSITION", false, options_.maxVertices);
     b.vertexCount = posAcc.count;
     part.positions.resize(b.vertexCount);
     for (size_t v = 0; v < b.vertexCount; ++v) {
       part.positions[v] = Vec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
       if (!part.positions[v].allFinite())
-        fail(path, part.label + ": vertex " + std::to_string(v) + " has a non-finite position (" +
-                       formatNumber(pos[3 * v]) + ", " + formatNumber(pos[3 * v + 1]) + ", " +
-                       formatNumber(pos[3 * v + 2]) + ")");
+        fail(path_, part.label + ": vertex " + std::to_string(v) + " has a non-finite position (" +
+                        formatNumber(pos[3 * v]) + ", " + formatNumber(pos[3 * v + 1]) + ", " +
+                        formatNumber(pos[3 * v + 2]) + ")");
     }
+  }
 
-    for (int p : b.primitives) {
-      const auto& prim = mesh.primitives[p];
-      const std::string plabel = "mesh " + std::to_string(b.mesh) + " '" + mesh.name +
-                                 "' primitive " + std::to_string(p);
-      std::vector<double> idx;
-      if (prim.indices >= 0) {
-        const auto& ia = model.accessors.at(prim.indices);
-        if (componentCount(ia.type) != 1) fail(path, plabel + ": indices accessor " + std::to_string(prim.indices) + " is not SCALAR");
-        if (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-            ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-          fail(path, plabel + ": indices accessor " + std::to_string(prim.indices) + " has component type " +
-                         std::to_string(ia.componentType) +
-                         "; indices must be unsigned byte (5121), unsigned short (5123) or unsigned int (5125)");
-        idx = readAccessor(model, prim.indices, path, plabel + " indices", false, options.maxVertices);
-      } else {
-        idx.resize(b.vertexCount);
-        for (size_t v = 0; v < b.vertexCount; ++v) idx[v] = static_cast<double>(v);
-      }
-      if (idx.size() % 3 != 0)
-        doc.warnings.push_back(path + ": " + plabel + ": " + std::to_string(idx.size()) +
-                               " indices is not a multiple of 3; the last " +
-                               std::to_string(idx.size() % 3) + " ignored");
-      for (size_t t = 0; t + 2 < idx.size(); t += 3) {
-        Face f;
-        for (int k = 0; k < 3; ++k) {
-          const double i = idx[t + k];
-          if (i < 0 || i >= static_cast<double>(b.vertexCount))
-            fail(path, plabel + ": triangle " + std::to_string(t / 3) + " uses index " +
-                           formatNumber(i) + " out of range (POSITION has " +
-                           std::to_string(b.vertexCount) + " vertices)");
-          f[k] = static_cast<int>(i);
-        }
-        part.faces.push_back(f);
-      }
+  // The primitive's indices (or 0, 1, 2, ... without them), checked against POSITION.
+  void readTriangles(const GltfPartBinding& b, int p, MeshPart& part) const {
+    const auto& mesh = model_.meshes[b.mesh];
+    const auto& prim = mesh.primitives[p];
+    const std::string plabel = "mesh " + std::to_string(b.mesh) + " '" + mesh.name + "' primitive " + std::to_string(p);
+    std::vector<double> idx;
+    if (prim.indices >= 0) {
+      const auto& ia = model_.accessors.at(prim.indices);
+      if (componentCount(ia.type) != 1) fail(path_, plabel + ": indices accessor " + std::to_string(prim.indices) + " is not SCALAR");
+      if (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+          ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+          ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        fail(path_, plabel + ": indices accessor " + std::to_string(prim.indices) + " has component type " +
+                        std::to_string(ia.componentType) +
+                        "; indices must be unsigned byte (5121), unsigned short (5123) or unsigned int (5125)");
+      idx = readAccessor(model_, prim.indices, path_, plabel + " indices", false, options_.maxVertices);
+    } else {
+      idx.resize(b.vertexCount);
+      for (size_t v = 0; v < b.vertexCount; ++v) idx[v] = static_cast<double>(v);
     }
+    if (idx.size() % 3 != 0)
+      warnings_.push_back(path_ + ": " + plabel + ": " + std::to_string(idx.size()) +
+                          " indices is not a multiple of 3; the last " + std::to_string(idx.size() % 3) + " ignored");
+    for (size_t t = 0; t + 2 < idx.size(); t += 3) {
+      Face f;
+      for (int k = 0; k < 3; ++k) {
+        const double i = idx[t + k];
+        if (i < 0 || i >= static_cast<double>(b.vertexCount))
+          fail(path_, plabel + ": triangle " + std::to_string(t / 3) + " uses index " + formatNumber(i) +
+                          " out of range (POSITION has " + std::to_string(b.vertexCount) + " vertices)");
+        f[k] = static_cast<int>(i);
+      }
+      part.faces.push_back(f);
+    }
+  }
 
-    auto attribute = [&](const std::string& semantic, bool warnIfMixed) {
-      bool inconsistent = false;
-      const int acc = sharedAttribute(mesh, b, semantic, inconsistent);
-      if (inconsistent && warnIfMixed)
-        doc.warnings.push_back(path + ": " + part.label + ": primitives sharing POSITION use different " +
-                               semantic + " accessors; " + semantic + " not read");
-      if (acc >= 0 && model.accessors.at(acc).count != b.vertexCount)
-        fail(path, part.label + " " + semantic + ": " + std::to_string(model.accessors[acc].count) +
-                       " elements for " + std::to_string(b.vertexCount) + " vertices");
-      return acc;
-    };
-    if (const int acc = attribute("NORMAL", true); acc >= 0) {
-      if (componentCount(model.accessors[acc].type) != 3) fail(path, part.label + ": NORMAL is not VEC3");
-      const auto n = readAccessor(model, acc, path, part.label + " NORMAL", false, options.maxVertices);
+  // The accessor of `semantic` shared by every primitive of the part, -1 without one.
+  int attribute(const GltfPartBinding& b, const MeshPart& part, const std::string& semantic) const {
+    bool inconsistent = false;
+    const int acc = sharedAttribute(model_.meshes[b.mesh], b, semantic, inconsistent);
+    if (inconsistent)
+      warnings_.push_back(path_ + ": " + part.label + ": primitives sharing POSITION use different " + semantic +
+                          " accessors; " + semantic + " not read");
+    if (acc >= 0 && model_.accessors.at(acc).count != b.vertexCount)
+      fail(path_, part.label + " " + semantic + ": " + std::to_string(model_.accessors[acc].count) + " elements for " +
+                      std::to_string(b.vertexCount) + " vertices");
+    return acc;
+  }
+
+  // NORMAL, COLOR_0 and the float attributes whose names start with '_'.
+  void readAttributes(const GltfPartBinding& b, MeshPart& part) const {
+    if (const int acc = attribute(b, part, "NORMAL"); acc >= 0) {
+      if (componentCount(model_.accessors[acc].type) != 3) fail(path_, part.label + ": NORMAL is not VEC3");
+      const auto n = readAccessor(model_, acc, path_, part.label + " NORMAL", false, options_.maxVertices);
       part.normals.resize(b.vertexCount);
       for (size_t v = 0; v < b.vertexCount; ++v) part.normals[v] = Vec3(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
     }
-    if (const int acc = attribute("COLOR_0", true); acc >= 0) {
-      const int comps = componentCount(model.accessors[acc].type);
-      if (comps != 3 && comps != 4) fail(path, part.label + ": COLOR_0 is neither VEC3 nor VEC4");
+    if (const int acc = attribute(b, part, "COLOR_0"); acc >= 0) {
+      const int comps = componentCount(model_.accessors[acc].type);
+      if (comps != 3 && comps != 4) fail(path_, part.label + ": COLOR_0 is neither VEC3 nor VEC4");
       // Integer colors are normalized by definition, even when the flag is missing.
-      const auto c = readAccessor(model, acc, path, part.label + " COLOR_0", true, options.maxVertices);
+      const auto c = readAccessor(model_, acc, path_, part.label + " COLOR_0", true, options_.maxVertices);
       part.colors.resize(b.vertexCount);
       for (size_t v = 0; v < b.vertexCount; ++v)
-        part.colors[v] = Eigen::Vector4d(c[comps * v], c[comps * v + 1], c[comps * v + 2],
-                                         comps == 4 ? c[comps * v + 3] : 1.0);
+        part.colors[v] = Eigen::Vector4d(c[comps * v], c[comps * v + 1], c[comps * v + 2], comps == 4 ? c[comps * v + 3] : 1.0);
     }
-    for (const auto& [semantic, ignored] : mesh.primitives[b.primitives[0]].attributes) {
+    for (const auto& [semantic, ignored] : model_.meshes[b.mesh].primitives[b.primitives[0]].attributes) {
       if (semantic.empty() || semantic[0] != '_') continue;
-      const int acc = attribute(semantic, true);
+      const int acc = attribute(b, part, semantic);
       if (acc < 0) continue;
-      const auto& a = model.accessors[acc];
+      const auto& a = model_.accessors[acc];
       const int dim = componentCount(a.type);
       if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || dim > 4) continue;
-      part.extras.push_back({semantic, dim, readAccessor(model, acc, path, part.label + " " + semantic, false, options.maxVertices)});
+      part.extras.push_back({semantic, dim, readAccessor(model_, acc, path_, part.label + " " + semantic, false, options_.maxVertices)});
     }
+  }
 
-    for (int n : nodesOfMesh[b.mesh]) {
-      if (b.vertexCount > worldLimit - worldVertices)
-        fail(path, "node " + std::to_string(n) + " draws " + part.label + " (" + std::to_string(b.vertexCount) +
-                       " vertices) once more: with it the nodes draw more than " + std::to_string(worldLimit) +
-                       " vertices in world space" +
-                       (worldLimit == options.maxVertices ? ", the limit (raise it with --max-vertices)"
-                                                          : ", more than a mesh can index (2^31 - 1)"));
-      worldVertices += b.vertexCount;
-      part.instances.push_back(world[n]);
+  // One instance per node drawing the part (its world matrix), the identity when none does.
+  void placeInstances(const GltfPartBinding& b, MeshPart& part) {
+    const std::string limit = worldLimit_ == options_.maxVertices ? ", the limit (raise it with --max-vertices)"
+                                                                  : ", more than a mesh can index (2^31 - 1)";
+    for (int n : nodesOfMesh_[b.mesh]) {
+      if (b.vertexCount > worldLimit_ - worldVertices_)
+        fail(path_, "node " + std::to_string(n) + " draws " + part.label + " (" + std::to_string(b.vertexCount) +
+                        " vertices) once more: with it the nodes draw more than " + std::to_string(worldLimit_) +
+                        " vertices in world space" + limit);
+      worldVertices_ += b.vertexCount;
+      part.instances.push_back(world_[n]);
     }
     if (part.instances.empty()) {
-      if (b.vertexCount > worldLimit - worldVertices)
-        fail(path, part.label + " (" + std::to_string(b.vertexCount) + " vertices) and the parts before it make more than " +
-                       std::to_string(worldLimit) + " vertices" +
-                       (worldLimit == options.maxVertices ? ", the limit (raise it with --max-vertices)"
-                                                          : ", more than a mesh can index (2^31 - 1)"));
-      worldVertices += b.vertexCount;
+      if (b.vertexCount > worldLimit_ - worldVertices_)
+        fail(path_, part.label + " (" + std::to_string(b.vertexCount) + " vertices) and the parts before it make more than " +
+                        std::to_string(worldLimit_) + " vertices" + limit);
+      worldVertices_ += b.vertexCount;
       part.instances.push_back(Eigen::Matrix4d::Identity());
     }
-    doc.parts.push_back(std::move(part));
   }
+
+  const std::string& path_;
+  const tinygltf::Model& model_;
+  const ReadOptions& options_;
+  std::vector<std::string>& warnings_;
+  const std::vector<Eigen::Matrix4d> world_;
+  std::vector<std::vector<int>> nodesOfMesh_;
+  const size_t worldLimit_;
+  size_t worldVertices_ = 0;
+};
+
+}  // namespace
+
+Document readGltf(const std::string& path, FileFormat format, const ReadOptions& options) {
+  const std::string bytes = readWholeFile(path);
+  const bool binary = checkFileHead(path, bytes, format);
+  auto source = std::make_shared<DocumentSource>();
+  source->format = format;
+  GltfSource& g = source->gltf;
+  g.baseDir = std::filesystem::path(path).parent_path().string();
+  Document doc;
+  doc.path = path;
+  doc.format = format;
+  loadModel(path, bytes, binary, g, doc.warnings);
+  // World matrices first: a cycle of nodes is refused before anything else of the scene is read.
+  PartReader reader(path, g.model, options, doc.warnings);
+  bindParts(path, g, doc.warnings);
+  for (GltfPartBinding& b : g.parts) doc.parts.push_back(reader.read(b));
 
   size_t triangles = 0;
   for (const auto& p : doc.parts) triangles += p.faces.size();

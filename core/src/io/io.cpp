@@ -26,50 +26,11 @@ void fail(const std::string& path, const std::string& what) {
 bool isGltfFamily(FileFormat f) { return f == FileFormat::Gltf || f == FileFormat::Glb; }
 
 #ifndef __EMSCRIPTEN__
-std::string formatNumber(double v) {
-  char buf[64];
-  auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
-
 bool parseDouble(const char* first, const char* last, double& value) {
   const auto r = std::from_chars(first, last, value);
   return r.ec == std::errc() && r.ptr == last;
 }
 #else
-// As std::to_chars(first, last, v): the fewest significant digits that read back as v, written
-// fixed or in printf's %e style, whichever is shorter (fixed on a tie).
-std::string formatNumber(double v) {
-  if (std::isnan(v)) return std::signbit(v) ? "-nan" : "nan";
-  if (std::isinf(v)) return v < 0 ? "-inf" : "inf";
-  char sci[64];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(sci, sizeof sci, "%.*e", digits - 1, v);
-    if (std::strtod(sci, nullptr) == v) break;
-  }
-  // sci = [-]d[.ddd]e±XX: its digits and exponent give the fixed form.
-  const std::string s(sci);
-  const size_t e = s.find('e');
-  const bool negative = s[0] == '-';
-  std::string digits;
-  for (size_t i = negative ? 1 : 0; i < e; ++i)
-    if (s[i] != '.') digits += s[i];
-  const int exponent = std::atoi(s.c_str() + e + 1);
-  const int n = static_cast<int>(digits.size());
-  std::string fixed = negative ? "-" : "";
-  if (exponent >= n - 1) {
-    // An integer: printf's %f writes its exact digits (beyond 17 they are not all zeros).
-    char whole[400];
-    std::snprintf(whole, sizeof whole, "%.0f", v);
-    fixed = whole;
-  } else if (exponent >= 0) {
-    fixed += digits.substr(0, static_cast<size_t>(exponent) + 1) + "." + digits.substr(static_cast<size_t>(exponent) + 1);
-  } else {
-    fixed += "0." + std::string(static_cast<size_t>(-exponent - 1), '0') + digits;
-  }
-  return fixed.size() <= s.size() ? fixed : s;
-}
-
 bool parseDouble(const char* first, const char* last, double& value) {
   // from_chars' grammar: no leading space or '+', no hexadecimal prefix.
   if (first == last || *first == '+' || std::isspace(static_cast<unsigned char>(*first))) return false;
@@ -81,6 +42,33 @@ bool parseDouble(const char* first, const char* last, double& value) {
   return end == text.c_str() + text.size() && errno != ERANGE;
 }
 #endif
+
+void unitNormals(const std::string& path, MeshPart& part, std::vector<std::string>& warnings) {
+  size_t rescaled = 0, replaced = 0;
+  std::vector<Vec3> surface;  // area-weighted face normals summed per vertex, made when needed
+  for (size_t v = 0; v < part.normals.size(); ++v) {
+    Vec3& n = part.normals[v];
+    const double length = n.norm();
+    if (std::isfinite(length) && length > 0) {
+      if (std::abs(length - 1) > kUnitTolerance) n /= length, ++rescaled;
+      continue;
+    }
+    if (surface.empty()) {
+      surface.assign(part.positions.size(), Vec3::Zero());
+      for (const Face& f : part.faces) {
+        const Vec3 a = (part.positions[f[1]] - part.positions[f[0]]).cross(part.positions[f[2]] - part.positions[f[0]]);
+        for (int k = 0; k < 3; ++k) surface[f[k]] += a;
+      }
+    }
+    const double s = v < surface.size() ? surface[v].norm() : 0;
+    n = s > 0 ? Vec3(surface[v] / s) : Vec3(0, 0, 1);
+    ++replaced;
+  }
+  const std::string where = path + ": " + (part.label.empty() ? "" : part.label + ": ");
+  if (rescaled) warnings.push_back(where + std::to_string(rescaled) + " normals were not of unit length; normalized");
+  if (replaced)
+    warnings.push_back(where + std::to_string(replaced) + " normals were zero or not finite; replaced by the surface's");
+}
 
 std::string readWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -224,15 +212,19 @@ Document readDocument(const std::string& path, const ReadOptions& options) {
   if (fs::is_directory(path, ec)) io::fail(path, "is a directory, not a mesh file");
   if (fs::file_size(path, ec) == 0 && !ec) io::fail(path, "the file is empty (0 bytes)");
   checkSignature(path, format);
+  Document doc;
   switch (format) {
     case FileFormat::Gltf:
-    case FileFormat::Glb: return io::readGltf(path, format, options);
-    case FileFormat::Obj: return io::readObj(path, options);
-    case FileFormat::Off: return io::readOff(path, options);
-    case FileFormat::Ply: return io::readPly(path, options);
-    case FileFormat::Stl: return io::readStl(path, options);
+    case FileFormat::Glb: doc = io::readGltf(path, format, options); break;
+    case FileFormat::Obj: doc = io::readObj(path, options); break;
+    case FileFormat::Off: doc = io::readOff(path, options); break;
+    case FileFormat::Ply: doc = io::readPly(path, options); break;
+    case FileFormat::Stl: doc = io::readStl(path, options); break;
   }
-  io::fail(path, "unsupported format");
+  // An OBJ keeps the normals as its vn lines hold them (ObjSource::normals): a normalized one is a
+  // changed one, written back in its vn line.
+  for (MeshPart& part : doc.parts) io::unitNormals(path, part, doc.warnings);
+  return doc;
 }
 
 std::vector<std::string> writeDocument(const Document& document, const std::string& path) {

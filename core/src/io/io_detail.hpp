@@ -6,6 +6,7 @@
 
 #include <tiny_gltf.h>
 
+#include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/io.hpp"
 
@@ -38,6 +39,10 @@ struct ObjVertexLine {
 struct ObjSource {
   std::string text;
   std::vector<ObjVertexLine> vertexLines;
+  // Byte ranges [begin, end) of the `vn` and `f` lines, and the vn line of each vertex (when every
+  // vertex has exactly one), to write the result's normals back.
+  std::vector<std::pair<size_t, size_t>> normalLines, faceLines;
+  std::vector<int> normalOf;
   std::vector<Vec3> normals;  // as exposed on read, to notice when a caller changed them
 };
 
@@ -54,8 +59,9 @@ namespace io {
 
 bool isGltfFamily(FileFormat f);
 
-// Shortest text that reads back as exactly the same double.
-std::string formatNumber(double v);
+// The writers' numbers: the shortest text that reads back as exactly the same double, as in
+// messages (check.hpp).
+using geoshift::formatNumber;
 
 // std::from_chars for a double (the whole of [first, last), no leading space or '+'); false when
 // it is not a number or out of range. Emscripten 3.1.6's libc++ has no floating-point from_chars
@@ -101,6 +107,14 @@ std::vector<std::string> writePly(const Document& document, const std::string& p
 std::vector<std::string> writeStl(const Document& document, const std::string& path);
 
 std::string readWholeFile(const std::string& path);
+
+// Normals are read as every writer must write them, unit length (glTF requires it; a viewer
+// shades with them as given): one whose length is off by more than kUnitTolerance is normalized,
+// a zero or non-finite one replaced by the area-weighted normal of the part's faces at its vertex
+// (+z where no face uses it), each kind counted in a warning. Unit ones keep their exact values,
+// so a file read and written back stays the same (docs/io.md#normals).
+inline constexpr double kUnitTolerance = 1e-5;
+void unitNormals(const std::string& path, MeshPart& part, std::vector<std::string>& warnings);
 
 // --- glTF accessors (gltf_accessor.cpp) ---
 // Where an accessor's elements sit: element i starts at data + offset + i * stride.

@@ -1,10 +1,12 @@
 // OBJ through tinyobjloader for faces, normals and diagnostics; the `v` lines are also parsed here
 // in double precision (tinyobjloader's float build would round them) and are the only lines
 // rewritten on save, so groups, materials, texture coordinates and comments stay byte for byte.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
+#include <string_view>
 
 #include <tiny_obj_loader.h>
 
@@ -20,7 +22,13 @@ void scanVertexLines(const std::string& path, const std::string& text, ObjSource
     size_t end = text.find_first_of("\r\n", pos);
     if (end == std::string::npos) end = text.size();
     size_t s = text.find_first_not_of(" \t", pos);
-    if (s < end && text[s] == 'v' && s + 1 < end && (text[s + 1] == ' ' || text[s + 1] == '\t')) {
+    const auto keyword = [&](std::string_view word) {
+      return s < end && text.compare(s, word.size(), word) == 0 && s + word.size() < end &&
+             (text[s + word.size()] == ' ' || text[s + word.size()] == '\t');
+    };
+    if (keyword("vn")) src.normalLines.emplace_back(s, end);
+    if (keyword("f")) src.faceLines.emplace_back(s, end);
+    if (keyword("v")) {
       std::vector<double> values;
       std::istringstream in(text.substr(s + 2, end - s - 2));
       for (std::string tok; in >> tok;) {
@@ -163,11 +171,71 @@ Document readObj(const std::string& path, const ReadOptions& options) {
     for (int n : normalOf)
       part.normals.emplace_back(attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]);
     src.normals = part.normals;
+    // The vn lines found must be tinyobjloader's normals one for one to be rewritten in place.
+    if (src.normalLines.size() == attrib.normals.size() / 3) src.normalOf = normalOf;
   }
   doc.parts.push_back(std::move(part));
   doc.source = std::move(source);
   return doc;
 }
+
+namespace {
+
+struct TextEdit {
+  size_t begin, end;  // the range of the source text it replaces
+  std::string text;
+};
+
+std::string normalLine(const Vec3& n) {
+  return "vn " + formatNumber(n.x()) + " " + formatNumber(n.y()) + " " + formatNumber(n.z());
+}
+
+// A face line without its normal references: "f 1/4/2 2//3 3" -> "f 1/4 2 3".
+std::string withoutNormals(std::string_view line) {
+  std::istringstream tokens{std::string(line)};
+  std::string out, token;
+  tokens >> out;  // "f"
+  while (tokens >> token) {
+    const size_t first = token.find('/');
+    const size_t second = first == std::string::npos ? std::string::npos : token.find('/', first + 1);
+    if (second != std::string::npos) token.erase(second);             // v/t/n -> v/t, v//n -> v/
+    if (!token.empty() && token.back() == '/') token.pop_back();     // v/ -> v
+    out += " " + token;
+  }
+  return out;
+}
+
+// The edits that make the file's normals the part's: the vn lines rewritten in place when every
+// vertex sharing one has the same new normal; otherwise (a vn line shared across a crease the result
+// no longer has, or vn lines that cannot be told apart) none: the vn lines go and faces lose their
+// normal references, so that viewers compute normals from the written positions.
+void normalEdits(const ObjSource& src, const MeshPart& part, const std::string& path, std::vector<TextEdit>& edits,
+                 std::vector<std::string>& warnings) {
+  std::vector<const Vec3*> normalOfLine(src.normalLines.size(), nullptr);
+  bool inPlace = src.normalOf.size() == part.normals.size();
+  for (size_t v = 0; inPlace && v < part.normals.size(); ++v) {
+    const int j = src.normalOf[v];
+    inPlace = j >= 0 && static_cast<size_t>(j) < normalOfLine.size();
+    if (!inPlace) break;
+    if (!normalOfLine[j]) normalOfLine[j] = &part.normals[v];
+    inPlace = *normalOfLine[j] == part.normals[v];
+  }
+  if (inPlace) {
+    for (size_t v = 0; v < part.normals.size(); ++v) {
+      const int j = src.normalOf[v];
+      if (normalOfLine[j] != &part.normals[v] || part.normals[v] == src.normals[v]) continue;
+      edits.push_back({src.normalLines[j].first, src.normalLines[j].second, normalLine(part.normals[v])});
+    }
+    return;
+  }
+  warnings.push_back(path + ": the result's normals differ where vertices share a vn line; the vn lines are left out "
+                            "(viewers compute normals from the positions)");
+  for (const auto& [begin, end] : src.normalLines) edits.push_back({begin, end, ""});
+  for (const auto& [begin, end] : src.faceLines)
+    edits.push_back({begin, end, withoutNormals(std::string_view(src.text).substr(begin, end - begin))});
+}
+
+}  // namespace
 
 std::vector<std::string> writeObjInto(const Document& document, const std::string& path) {
   const ObjSource& src = document.source->obj;
@@ -177,23 +245,31 @@ std::vector<std::string> writeObjInto(const Document& document, const std::strin
     fail(path, std::to_string(part.positions.size()) + " positions, the file has " +
                    std::to_string(src.vertexLines.size()) + "; the vertex layout cannot change when writing back");
   std::vector<std::string> warnings;
-  if (!part.normals.empty() && part.normals != src.normals)
-    warnings.push_back(path + ": normals are not written to OBJ (its vn lines are kept as they were)");
   for (const auto& e : part.extras)
     warnings.push_back(path + ": extra attribute '" + e.name + "' is not stored in OBJ");
 
-  std::string out;
-  out.reserve(src.text.size() + src.text.size() / 8);
-  size_t copied = 0;
+  std::vector<TextEdit> edits;
   for (size_t i = 0; i < src.vertexLines.size(); ++i) {
     const auto& l = src.vertexLines[i];
     const Eigen::Vector4d* color = part.colors.empty() ? nullptr : &part.colors[i];
     // Unchanged vertices keep their text, so a round trip without changes is byte-identical.
     const bool sameColor = color ? (l.hasColor && color->head<3>() == l.color) : !l.hasColor;
     if (part.positions[i] == l.position && sameColor) continue;
-    out.append(src.text, copied, l.begin - copied);
-    out += vertexLine(part.positions[i], color);
-    copied = l.end;
+    edits.push_back({l.begin, l.end, vertexLine(part.positions[i], color)});
+  }
+  if (!part.normals.empty() && part.normals != src.normals) normalEdits(src, part, path, edits, warnings);
+  std::sort(edits.begin(), edits.end(), [](const TextEdit& a, const TextEdit& b) { return a.begin < b.begin; });
+
+  std::string out;
+  out.reserve(src.text.size() + src.text.size() / 8);
+  size_t copied = 0;
+  for (const TextEdit& e : edits) {
+    out.append(src.text, copied, e.begin - copied);
+    out += e.text;
+    copied = e.end;
+    // A removed line takes its line break with it.
+    if (e.text.empty() && copied < src.text.size() && src.text[copied] == '\r') ++copied;
+    if (e.text.empty() && copied < src.text.size() && src.text[copied] == '\n') ++copied;
   }
   out.append(src.text, copied, std::string::npos);
   AtomicFileSet files;

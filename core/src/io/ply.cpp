@@ -28,6 +28,136 @@ bool reserved(const std::string& name) {
   return false;
 }
 
+
+// What each vertex property becomes.
+enum Role { Skip, Position, Normal, Color, Extra };
+
+struct VertexLayout {
+  std::vector<std::pair<Role, int>> role;  // per property: its role and channel (or extra's index)
+  bool normals = false, colors = false;
+};
+
+// The vertex element's properties as positions, normals, colors and extra attributes (added to
+// part.extras, named "_" + the property's name); InputError when x, y, z or a whole set is missing.
+VertexLayout vertexLayout(const std::string& path, const Element& ve, MeshPart& part, std::vector<std::string>& warnings) {
+  VertexLayout layout;
+  layout.role.assign(ve.props.size(), {Skip, 0});
+  int nNormal = 0, nColor = 0;
+  bool alpha = false;
+  for (size_t k = 0; k < ve.props.size(); ++k) {
+    const Property& p = ve.props[k];
+    if (p.list) {
+      warnings.push_back(path + ": vertex list property '" + p.name + "' is ignored and not written back");
+      continue;
+    }
+    static const char* const pos[] = {"x", "y", "z"};
+    static const char* const nor[] = {"nx", "ny", "nz"};
+    static const char* const col[] = {"red", "green", "blue", "alpha"};
+    auto& role = layout.role[k];
+    for (int c = 0; c < 3; ++c) {
+      if (p.name == pos[c]) role = {Position, c};
+      if (p.name == nor[c]) role = {Normal, c}, ++nNormal;
+    }
+    for (int c = 0; c < 4; ++c)
+      if (p.name == col[c]) {
+        if (!isColorType(p.type))
+          fail(path, "vertex property '" + p.name + "' has type " + typeName(p.type) +
+                         "; colors must be uchar, ushort, float or double");
+        role = {Color, c};
+        ++nColor;
+        alpha = alpha || c == 3;
+      }
+    if (role.first == Skip) {
+      role = {Extra, static_cast<int>(part.extras.size())};
+      part.extras.push_back({"_" + p.name, 1, {}});
+    }
+  }
+  for (const char* c : {"x", "y", "z"})
+    if (ve.find(c) < 0 || ve.props[ve.find(c)].list)
+      fail(path, std::string("the vertex element has no scalar property '") + c + "'");
+  if (nNormal != 0 && nNormal != 3) fail(path, "the vertex element has some but not all of nx, ny, nz");
+  if (nColor != 0 && nColor - (alpha ? 1 : 0) != 3) fail(path, "the vertex element has some but not all of red, green, blue");
+  layout.normals = nNormal > 0;
+  layout.colors = nColor > 0;
+  return layout;
+}
+
+// The face element's index list property, -1 without a face element; the other properties and
+// elements are reported as ignored.
+int faceIndexProperty(const std::string& path, const Header& h, std::vector<std::string>& warnings) {
+  const int fi = h.findElement("face");
+  int indexProp = -1;
+  if (fi >= 0) {
+    const Element& fe = h.elements[fi];
+    for (const char* name : {"vertex_indices", "vertex_index"})
+      if (indexProp < 0) indexProp = fe.find(name);
+    if (indexProp < 0) fail(path, "the face element has no 'vertex_indices' (or 'vertex_index') list");
+    const Property& ip = fe.props[indexProp];
+    if (!ip.list) fail(path, "face property '" + ip.name + "' is not a list");
+    if (!isInteger(ip.type))
+      fail(path, "face property '" + ip.name + "' has item type " + typeName(ip.type) + "; indices must be integers");
+    for (size_t k = 0; k < fe.props.size(); ++k)
+      if (static_cast<int>(k) != indexProp)
+        warnings.push_back(path + ": face property '" + fe.props[k].name + "' is ignored and not written back");
+  }
+  for (const Element& e : h.elements)
+    if (e.name != "vertex" && e.name != "face")
+      warnings.push_back(path + ": element '" + e.name + "' (" + std::to_string(e.count) + ") is ignored and not written back");
+  return indexProp;
+}
+
+void readVertexRecords(Records& rec, const Element& e, const VertexLayout& layout, MeshPart& part) {
+  for (size_t i = 0; i < e.count; ++i) {
+    rec.begin(e, i);
+    for (size_t k = 0; k < e.props.size(); ++k) {
+      const Property& p = e.props[k];
+      if (p.list) {
+        rec.skip(p);
+        continue;
+      }
+      const double v = rec.scalar(p);
+      const auto [r, c] = layout.role[k];
+      if (r == Position) part.positions[i][c] = v;
+      else if (r == Normal) part.normals[i][c] = v;
+      else if (r == Color) part.colors[i][c] = v * colorScale(p.type);
+      else if (r == Extra) part.extras[c].values[i] = v;
+    }
+    rec.end();
+    if (!part.positions[i].allFinite()) rec.fail("non-finite position");
+  }
+}
+
+// Fan-triangulates every face; returns how many had more than 3 vertices.
+size_t readFaceRecords(Records& rec, const Element& e, int indexProp, MeshPart& part) {
+  const size_t nv = part.positions.size();
+  size_t polygons = 0;
+  std::vector<int> idx;
+  part.faces.reserve(e.count);
+  for (size_t i = 0; i < e.count; ++i) {
+    rec.begin(e, i);
+    for (size_t k = 0; k < e.props.size(); ++k) {
+      const Property& p = e.props[k];
+      if (static_cast<int>(k) != indexProp) {
+        rec.skip(p);
+        continue;
+      }
+      const size_t n = rec.listLength(p);
+      if (n < 3) rec.fail("a face needs at least 3 vertices, this one has " + std::to_string(n));
+      idx.clear();
+      for (size_t j = 0; j < n; ++j) {
+        const double v = rec.listItem(p);
+        if (v < 0 || v >= static_cast<double>(nv))
+          rec.fail("index " + formatNumber(v) + " out of range (" + std::to_string(nv) + " vertices)");
+        idx.push_back(static_cast<int>(v));
+      }
+      if (n > 3) ++polygons;
+      for (size_t j = 1; j + 1 < n; ++j) part.faces.push_back({idx[0], idx[j], idx[j + 1]});
+    }
+    rec.end();
+  }
+  return polygons;
+}
+
 }  // namespace
 
 Document readPly(const std::string& path, const ReadOptions& options) {
@@ -46,122 +176,26 @@ Document readPly(const std::string& path, const ReadOptions& options) {
   MeshPart part;
   part.label = "PLY";
   part.instances.push_back(Eigen::Matrix4d::Identity());
-
-  // What each vertex property becomes.
-  enum Role { Skip, Position, Normal, Color, Extra };
-  std::vector<std::pair<Role, int>> role(ve.props.size(), {Skip, 0});
-  int nNormal = 0, nColor = 0;
-  bool alpha = false;
-  for (size_t k = 0; k < ve.props.size(); ++k) {
-    const Property& p = ve.props[k];
-    if (p.list) {
-      doc.warnings.push_back(path + ": vertex list property '" + p.name + "' is ignored and not written back");
-      continue;
-    }
-    static const char* const pos[] = {"x", "y", "z"};
-    static const char* const nor[] = {"nx", "ny", "nz"};
-    static const char* const col[] = {"red", "green", "blue", "alpha"};
-    for (int c = 0; c < 3; ++c) {
-      if (p.name == pos[c]) role[k] = {Position, c};
-      if (p.name == nor[c]) role[k] = {Normal, c}, ++nNormal;
-    }
-    for (int c = 0; c < 4; ++c)
-      if (p.name == col[c]) {
-        if (!isColorType(p.type))
-          fail(path, "vertex property '" + p.name + "' has type " + typeName(p.type) +
-                         "; colors must be uchar, ushort, float or double");
-        role[k] = {Color, c};
-        ++nColor;
-        alpha = alpha || c == 3;
-      }
-    if (role[k].first == Skip) {
-      role[k] = {Extra, static_cast<int>(part.extras.size())};
-      part.extras.push_back({"_" + p.name, 1, {}});
-    }
-  }
-  for (const char* c : {"x", "y", "z"})
-    if (ve.find(c) < 0 || ve.props[ve.find(c)].list)
-      fail(path, std::string("the vertex element has no scalar property '") + c + "'");
-  if (nNormal != 0 && nNormal != 3) fail(path, "the vertex element has some but not all of nx, ny, nz");
-  if (nColor != 0 && nColor - (alpha ? 1 : 0) != 3)
-    fail(path, "the vertex element has some but not all of red, green, blue");
-
+  const VertexLayout layout = vertexLayout(path, ve, part, doc.warnings);
   const int fi = h.findElement("face");
-  int indexProp = -1;
-  if (fi >= 0) {
-    const Element& fe = h.elements[fi];
-    for (const char* name : {"vertex_indices", "vertex_index"})
-      if (indexProp < 0) indexProp = fe.find(name);
-    if (indexProp < 0) fail(path, "the face element has no 'vertex_indices' (or 'vertex_index') list");
-    const Property& ip = fe.props[indexProp];
-    if (!ip.list) fail(path, "face property '" + ip.name + "' is not a list");
-    if (!isInteger(ip.type))
-      fail(path, "face property '" + ip.name + "' has item type " + typeName(ip.type) + "; indices must be integers");
-    for (size_t k = 0; k < fe.props.size(); ++k)
-      if (static_cast<int>(k) != indexProp)
-        doc.warnings.push_back(path + ": face property '" + fe.props[k].name + "' is ignored and not written back");
-  }
-  for (const Element& e : h.elements)
-    if (e.name != "vertex" && e.name != "face")
-      doc.warnings.push_back(path + ": element '" + e.name + "' (" + std::to_string(e.count) +
-                             ") is ignored and not written back");
+  const int indexProp = faceIndexProperty(path, h, doc.warnings);
 
   // parseHeader checked every count against the file's size: these allocations are bounded by it.
   const size_t nv = ve.count;
   part.positions.resize(nv);
-  if (nNormal) part.normals.resize(nv);
-  if (nColor) part.colors.assign(nv, Eigen::Vector4d(0, 0, 0, 1));
+  if (layout.normals) part.normals.resize(nv);
+  if (layout.colors) part.colors.assign(nv, Eigen::Vector4d(0, 0, 0, 1));
   for (auto& e : part.extras) e.values.resize(nv);
 
   Records rec(path, b, h);
   size_t polygons = 0;
-  std::vector<int> idx;
   for (size_t ei = 0; ei < h.elements.size(); ++ei) {
     const Element& e = h.elements[ei];
     if (e.props.empty()) continue;
     if (static_cast<int>(ei) == vi) {
-      for (size_t i = 0; i < e.count; ++i) {
-        rec.begin(e, i);
-        for (size_t k = 0; k < e.props.size(); ++k) {
-          const Property& p = e.props[k];
-          if (p.list) {
-            rec.skip(p);
-            continue;
-          }
-          const double v = rec.scalar(p);
-          const auto [r, c] = role[k];
-          if (r == Position) part.positions[i][c] = v;
-          else if (r == Normal) part.normals[i][c] = v;
-          else if (r == Color) part.colors[i][c] = v * colorScale(p.type);
-          else if (r == Extra) part.extras[c].values[i] = v;
-        }
-        rec.end();
-        if (!part.positions[i].allFinite()) rec.fail("non-finite position");
-      }
+      readVertexRecords(rec, e, layout, part);
     } else if (static_cast<int>(ei) == fi) {
-      part.faces.reserve(e.count);
-      for (size_t i = 0; i < e.count; ++i) {
-        rec.begin(e, i);
-        for (size_t k = 0; k < e.props.size(); ++k) {
-          const Property& p = e.props[k];
-          if (static_cast<int>(k) != indexProp) {
-            rec.skip(p);
-            continue;
-          }
-          const size_t n = rec.listLength(p);
-          if (n < 3) rec.fail("a face needs at least 3 vertices, this one has " + std::to_string(n));
-          idx.clear();
-          for (size_t j = 0; j < n; ++j) {
-            const double v = rec.listItem(p);
-            if (v < 0 || v >= static_cast<double>(nv))
-              rec.fail("index " + formatNumber(v) + " out of range (" + std::to_string(nv) + " vertices)");
-            idx.push_back(static_cast<int>(v));
-          }
-          if (n > 3) ++polygons;
-          for (size_t j = 1; j + 1 < n; ++j) part.faces.push_back({idx[0], idx[j], idx[j + 1]});
-        }
-        rec.end();
-      }
+      polygons += readFaceRecords(rec, e, indexProp, part);
     } else {
       for (size_t i = 0; i < e.count; ++i) {
         rec.begin(e, i);
@@ -221,25 +255,9 @@ struct Column {
   bool single = true;  // float rather than double
 };
 
-}  // namespace
-
-std::vector<std::string> writePly(const Document& document, const std::string& path) {
-  std::vector<std::string> warnings;
-  static const std::vector<Eigen::Matrix4d> identity{Eigen::Matrix4d::Identity()};
-  const TriangleSoup soup = worldSoup(document);
-  const size_t n = soup.positions.size();
-
-  bool allNormals = true, anyColor = false, anyAlpha = false;
-  for (const auto& p : document.parts) {
-    allNormals = allNormals && !p.normals.empty();
-    anyColor = anyColor || !p.colors.empty();
-    for (const auto& c : p.colors) anyAlpha = anyAlpha || c[3] != 1.0;
-  }
-  bool anyNormals = false;
-  for (const auto& p : document.parts) anyNormals = anyNormals || !p.normals.empty();
-  if (anyNormals && !allNormals) warnings.push_back(path + ": normals not written: not every part has them");
-
-  // Attributes every part has, with the same dimension; names without their leading '_'.
+// Attributes every part has, with the same dimension; the others are reported as not written.
+std::vector<std::pair<std::string, int>> sharedExtras(const Document& document, const std::string& path,
+                                                      std::vector<std::string>& warnings) {
   std::vector<std::pair<std::string, int>> extras;
   for (const auto& e : document.parts.front().extras) {
     bool everywhere = true;
@@ -253,73 +271,120 @@ std::vector<std::string> writePly(const Document& document, const std::string& p
     for (const auto& e : p.extras)
       if (std::none_of(extras.begin(), extras.end(), [&](const auto& x) { return x.first == e.name; }))
         warnings.push_back(path + ": attribute '" + e.name + "' not written: not every part has it");
+  return extras;
+}
 
-  std::vector<Column> cols;
-  for (int c = 0; c < 3; ++c) {
-    cols.push_back({std::string(1, "xyz"[c]), {}});
-    cols.back().values.reserve(n);
-    for (const Vec3& p : soup.positions) cols.back().values.push_back(p[c]);
+// The vertex element's columns, world space, every instance of every part in turn: x y z, then nx
+// ny nz (when every part has normals; unit length after the instance's normal matrix), the colors
+// [colorBegin, colorEnd), then the shared attributes without their leading '_'.
+class VertexColumns {
+ public:
+  VertexColumns(const Document& document, const std::string& path, std::vector<std::string>& warnings)
+      : document_(document), path_(path), warnings_(warnings) {}
+
+  std::vector<Column> columns;
+  size_t colorBegin = 0, colorEnd = 0;
+
+  void add(const TriangleSoup& soup) {
+    bool allNormals = true, anyNormals = false, anyColor = false, anyAlpha = false;
+    for (const auto& p : document_.parts) {
+      allNormals = allNormals && !p.normals.empty();
+      anyNormals = anyNormals || !p.normals.empty();
+      anyColor = anyColor || !p.colors.empty();
+      for (const auto& c : p.colors) anyAlpha = anyAlpha || c[3] != 1.0;
+    }
+    if (anyNormals && !allNormals) warnings_.push_back(path_ + ": normals not written: not every part has them");
+    const std::vector<std::pair<std::string, int>> extras = sharedExtras(document_, path_, warnings_);
+    for (int c = 0; c < 3; ++c) {
+      columns.push_back({std::string(1, "xyz"[c]), {}});
+      columns.back().values.reserve(soup.positions.size());
+      for (const Vec3& p : soup.positions) columns.back().values.push_back(p[c]);
+    }
+    if (allNormals) addNormals();
+    colorBegin = columns.size();
+    if (anyColor) addColors(anyAlpha ? 4 : 3);
+    colorEnd = columns.size();
+    for (const auto& [name, dim] : extras) addExtra(name, dim);
+    chooseTypes(anyColor);
   }
-  auto perVertex = [&](const std::string& name, auto&& value) {
+
+ private:
+  template <class Value>
+  void perVertex(const std::string& name, Value&& value) {
+    static const std::vector<Eigen::Matrix4d> identity{Eigen::Matrix4d::Identity()};
     Column col{name, {}};
-    col.values.reserve(n);
-    for (const auto& p : document.parts)
+    col.values.reserve(columns.empty() ? 0 : columns.front().values.size());
+    for (const auto& p : document_.parts)
       for (const auto& m : p.instances.empty() ? identity : p.instances)
         for (size_t v = 0; v < p.positions.size(); ++v) col.values.push_back(value(p, m, v));
-    return col;
-  };
-  if (allNormals)
+    columns.push_back(std::move(col));
+  }
+
+  void addNormals() {
     for (int c = 0; c < 3; ++c)
-      cols.push_back(perVertex(std::string("n") + "xyz"[c], [c](const MeshPart& p, const Eigen::Matrix4d& m, size_t v) {
+      perVertex(std::string("n") + "xyz"[c], [c](const MeshPart& p, const Eigen::Matrix4d& m, size_t v) {
         const Eigen::Matrix3d nm = m.topLeftCorner<3, 3>().inverse().transpose();
         const Vec3 w = nm * p.normals[v];
         return (w.norm() > 0 ? Vec3(w.normalized()) : w)[c];
-      }));
-  if (anyColor)
-    for (int c = 0; c < (anyAlpha ? 4 : 3); ++c) {
-      static const char* const names[] = {"red", "green", "blue", "alpha"};
-      cols.push_back(perVertex(names[c], [c](const MeshPart& p, const Eigen::Matrix4d&, size_t v) {
+      });
+  }
+
+  void addColors(int channels) {
+    static const char* const names[] = {"red", "green", "blue", "alpha"};
+    for (int c = 0; c < channels; ++c)
+      perVertex(names[c], [c](const MeshPart& p, const Eigen::Matrix4d&, size_t v) {
         return p.colors.empty() ? 1.0 : std::clamp(p.colors[v][c], 0.0, 1.0);
-      }));
-    }
-  const size_t colorBegin = allNormals ? 6 : 3, colorEnd = cols.size();
-  for (const auto& extra : extras) {
-    const std::string& name = extra.first;  // not a structured binding: lambdas below capture it
-    const int dim = extra.second;
-    std::string base = !name.empty() && name[0] == '_' ? name.substr(1) : name;
+      });
+  }
+
+  // One property per component, named after the attribute without its leading '_'.
+  void addExtra(const std::string& name, int dim) {
+    const std::string base = !name.empty() && name[0] == '_' ? name.substr(1) : name;
     if (base.empty() || base.find_first_of(" \t\r\n") != std::string::npos) {
-      warnings.push_back(path + ": attribute '" + name + "' not written: not a valid PLY property name");
-      continue;
+      warnings_.push_back(path_ + ": attribute '" + name + "' not written: not a valid PLY property name");
+      return;
     }
     for (int k = 0; k < dim; ++k) {
       const std::string prop = dim == 1 ? base : base + "_" + std::to_string(k);
       if (reserved(prop)) {
-        warnings.push_back(path + ": attribute '" + name + "' not written: PLY property '" + prop + "' is taken");
+        warnings_.push_back(path_ + ": attribute '" + name + "' not written: PLY property '" + prop + "' is taken");
         break;
       }
-      cols.push_back(perVertex(prop, [&, k](const MeshPart& p, const Eigen::Matrix4d&, size_t v) {
+      perVertex(prop, [&, k](const MeshPart& p, const Eigen::Matrix4d&, size_t v) {
         for (const auto& e : p.extras)
           if (e.name == name) return e.values[v * dim + k];
         return 0.0;
-      }));
+      });
     }
     if (dim > 1)
-      warnings.push_back(path + ": attribute '" + name + "' (dimension " + std::to_string(dim) +
-                         ") written as one PLY property per component, " + base + "_0 to " + base + "_" +
-                         std::to_string(dim - 1));
-  }
-  for (size_t c = 0; c < cols.size(); ++c) {
-    const bool color = c >= colorBegin && c < colorEnd;
-    cols[c].bytes = color && allBytes(cols[c].values);
-    cols[c].single = allFloat(cols[c].values);
-  }
-  if (anyColor && colorBegin < colorEnd) {
-    // One type for all color channels: readers expect red, green and blue alike.
-    bool bytes = true;
-    for (size_t c = colorBegin; c < colorEnd; ++c) bytes = bytes && cols[c].bytes;
-    for (size_t c = colorBegin; c < colorEnd; ++c) cols[c].bytes = bytes, cols[c].single = true;
+      warnings_.push_back(path_ + ": attribute '" + name + "' (dimension " + std::to_string(dim) +
+                          ") written as one PLY property per component, " + base + "_0 to " + base + "_" +
+                          std::to_string(dim - 1));
   }
 
+  // float where every value fits it exactly, else double; colors as uchar when all of them fit.
+  void chooseTypes(bool anyColor) {
+    for (size_t c = 0; c < columns.size(); ++c) {
+      const bool color = c >= colorBegin && c < colorEnd;
+      columns[c].bytes = color && allBytes(columns[c].values);
+      columns[c].single = allFloat(columns[c].values);
+    }
+    if (anyColor && colorBegin < colorEnd) {
+      // One type for all color channels: readers expect red, green and blue alike.
+      bool bytes = true;
+      for (size_t c = colorBegin; c < colorEnd; ++c) bytes = bytes && columns[c].bytes;
+      for (size_t c = colorBegin; c < colorEnd; ++c) columns[c].bytes = bytes, columns[c].single = true;
+    }
+  }
+
+  const Document& document_;
+  const std::string& path_;
+  std::vector<std::string>& warnings_;
+};
+
+// Header and binary little endian records: the vertex columns, then the triangles.
+std::string encode(const std::vector<Column>& cols, const TriangleSoup& soup) {
+  const size_t n = soup.positions.size();
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by geoshift\nelement vertex " +
                     std::to_string(n) + "\n";
   for (const Column& c : cols)
@@ -340,8 +405,18 @@ std::vector<std::string> writePly(const Document& document, const std::string& p
     le.put(static_cast<uint8_t>(3));
     for (int k = 0; k < 3; ++k) le.put(static_cast<int32_t>(f[k]));
   }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> writePly(const Document& document, const std::string& path) {
+  std::vector<std::string> warnings;
+  const TriangleSoup soup = worldSoup(document);
+  VertexColumns vertex(document, path, warnings);
+  vertex.add(soup);
   AtomicFileSet files;
-  files.add(path, std::move(out));
+  files.add(path, encode(vertex.columns, soup));
   files.commit();
   return warnings;
 }

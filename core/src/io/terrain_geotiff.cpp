@@ -109,99 +109,98 @@ double storedBytes(TIFF* t, bool tiled, double fileSize) {
   return std::min(sum, fileSize);
 }
 
-}  // namespace
-
-ElevationGrid readGeoTiff(const std::string& path) {
-  std::string error;
-  TIFFOpenOptions* opts = TIFFOpenOptionsAlloc();
-  TIFFOpenOptionsSetErrorHandlerExtR(opts, onError, &error);
-  TIFFOpenOptionsSetWarningHandlerExtR(opts, onWarning, nullptr);
-  std::unique_ptr<TIFF, Closer> tif(TIFFOpenExt(path.c_str(), "r", opts));
-  TIFFOpenOptionsFree(opts);
-  auto fail = [&](const std::string& what) { io::fail(path, what); };
-  if (!tif) fail("cannot open as TIFF" + (error.empty() ? std::string() : " (" + error + ")"));
-  TIFF* t = tif.get();
-
+// How the raster's samples are stored.
+struct Layout {
   uint32_t w = 0, h = 0;
   uint16_t bits = 0, spp = 1, format = SAMPLEFORMAT_UINT, planar = PLANARCONFIG_CONTIG;
-  TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &w);
-  TIFFGetField(t, TIFFTAG_IMAGELENGTH, &h);
-  TIFFGetFieldDefaulted(t, TIFFTAG_BITSPERSAMPLE, &bits);
-  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLESPERPIXEL, &spp);
-  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLEFORMAT, &format);
-  TIFFGetFieldDefaulted(t, TIFFTAG_PLANARCONFIG, &planar);
-  if (w == 0 || h == 0) fail("image has no pixels");
-  if (static_cast<uint64_t>(w) * h > (1u << 28))
-    fail(std::to_string(w) + " x " + std::to_string(h) + " pixels is too large (at most 2^28 cells; crop or resample it first)");
-  const bool okFormat = (format == SAMPLEFORMAT_UINT || format == SAMPLEFORMAT_INT)
-                            ? (bits == 8 || bits == 16 || bits == 32 || bits == 64)
-                            : format == SAMPLEFORMAT_IEEEFP && (bits == 32 || bits == 64);
-  if (!okFormat || spp < 1)
-    fail("unsupported samples: " + std::to_string(bits) + "-bit, sample format " + std::to_string(format) +
-         " (8-64 bit integers and 32/64-bit floats are supported)");
+  size_t bytes() const { return bits / 8; }
+  size_t stride() const { return planar == PLANARCONFIG_CONTIG ? spp : 1; }  // samples per pixel in a block
+};
 
-  // Decoded bytes the blocks declare (tiles are whole even where they overhang the image), against
-  // what the stored bytes can decode to.
+// The image's size and sample type; InputError for no pixels, too many, or samples it cannot read.
+Layout readLayout(TIFF* t, const std::string& path) {
+  Layout l;
+  TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &l.w);
+  TIFFGetField(t, TIFFTAG_IMAGELENGTH, &l.h);
+  TIFFGetFieldDefaulted(t, TIFFTAG_BITSPERSAMPLE, &l.bits);
+  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLESPERPIXEL, &l.spp);
+  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLEFORMAT, &l.format);
+  TIFFGetFieldDefaulted(t, TIFFTAG_PLANARCONFIG, &l.planar);
+  if (l.w == 0 || l.h == 0) io::fail(path, "image has no pixels");
+  if (static_cast<uint64_t>(l.w) * l.h > (1u << 28))
+    io::fail(path, std::to_string(l.w) + " x " + std::to_string(l.h) +
+                       " pixels is too large (at most 2^28 cells; crop or resample it first)");
+  const bool okFormat = (l.format == SAMPLEFORMAT_UINT || l.format == SAMPLEFORMAT_INT)
+                            ? (l.bits == 8 || l.bits == 16 || l.bits == 32 || l.bits == 64)
+                            : l.format == SAMPLEFORMAT_IEEEFP && (l.bits == 32 || l.bits == 64);
+  if (!okFormat || l.spp < 1)
+    io::fail(path, "unsupported samples: " + std::to_string(l.bits) + "-bit, sample format " + std::to_string(l.format) +
+                       " (8-64 bit integers and 32/64-bit floats are supported)");
+  return l;
+}
+
+// Decoded bytes the blocks declare (tiles are whole even where they overhang the image), against
+// what the stored bytes can decode to: a small file cannot make the reader allocate gigabytes.
+void checkDeclaredSize(TIFF* t, const std::string& path, const Layout& l) {
   const bool tiled = TIFFIsTiled(t);
   uint16_t compression = COMPRESSION_NONE;
   TIFFGetFieldDefaulted(t, TIFFTAG_COMPRESSION, &compression);
   const double declared = tiled ? static_cast<double>(TIFFNumberOfTiles(t)) * static_cast<double>(TIFFTileSize64(t))
-                                : static_cast<double>(w) * h * (bits / 8) * (planar == PLANARCONFIG_CONTIG ? spp : 1);
+                                : static_cast<double>(l.w) * l.h * l.bytes() * (l.planar == PLANARCONFIG_CONTIG ? l.spp : 1);
   std::error_code ec;
   const auto fileSize = std::filesystem::file_size(path, ec);
   const double stored = storedBytes(t, tiled, ec ? 0.0 : static_cast<double>(fileSize));
   if (declared > maxExpansion(compression) * stored)
-    fail(std::to_string(w) + " x " + std::to_string(h) + " pixels of " + std::to_string(bits) + "-bit samples need " +
-         io::formatNumber(declared) + " bytes of " + (tiled ? "tiles" : "strips") + ", more than the " + io::formatNumber(stored) +
-         " bytes of them in the file can hold (compression " + std::to_string(compression) + ")");
+    io::fail(path, std::to_string(l.w) + " x " + std::to_string(l.h) + " pixels of " + std::to_string(l.bits) +
+                       "-bit samples need " + formatNumber(declared) + " bytes of " + (tiled ? "tiles" : "strips") +
+                       ", more than the " + formatNumber(stored) + " bytes of them in the file can hold (compression " +
+                       std::to_string(compression) + ")");
+}
 
-  ElevationGrid g;
-  g.width = static_cast<int>(w);
-  g.height = static_cast<int>(h);
-  g.values.assign(static_cast<size_t>(w) * h, std::nan(""));
-  if (spp > 1) g.notes.push_back("the raster has " + std::to_string(spp) + " bands; band 1 is the elevation");
+double sampleAt(const Layout& l, const unsigned char* p) {
+  switch (l.format) {
+    case SAMPLEFORMAT_IEEEFP:
+      if (l.bits == 32) { float v; std::memcpy(&v, p, 4); return v; }
+      { double v; std::memcpy(&v, p, 8); return v; }
+    case SAMPLEFORMAT_INT:
+      switch (l.bits) {
+        case 8: return static_cast<int8_t>(*p);
+        case 16: { int16_t v; std::memcpy(&v, p, 2); return v; }
+        case 32: { int32_t v; std::memcpy(&v, p, 4); return v; }
+        default: { int64_t v; std::memcpy(&v, p, 8); return static_cast<double>(v); }
+      }
+    default:
+      switch (l.bits) {
+        case 8: return *p;
+        case 16: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+        case 32: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+        default: { uint64_t v; std::memcpy(&v, p, 8); return static_cast<double>(v); }
+      }
+  }
+}
 
-  const size_t bytes = bits / 8;
-  const size_t stride = planar == PLANARCONFIG_CONTIG ? spp : 1;
-  auto sample = [&](const unsigned char* p) -> double {
-    switch (format) {
-      case SAMPLEFORMAT_IEEEFP:
-        if (bits == 32) { float v; std::memcpy(&v, p, 4); return v; }
-        { double v; std::memcpy(&v, p, 8); return v; }
-      case SAMPLEFORMAT_INT:
-        switch (bits) {
-          case 8: return static_cast<int8_t>(*p);
-          case 16: { int16_t v; std::memcpy(&v, p, 2); return v; }
-          case 32: { int32_t v; std::memcpy(&v, p, 4); return v; }
-          default: { int64_t v; std::memcpy(&v, p, 8); return static_cast<double>(v); }
-        }
-      default:
-        switch (bits) {
-          case 8: return *p;
-          case 16: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-          case 32: { uint32_t v; std::memcpy(&v, p, 4); return v; }
-          default: { uint64_t v; std::memcpy(&v, p, 8); return static_cast<double>(v); }
-        }
-    }
-  };
+// Band 1 of every tile or strip into g.values; `error` holds libtiff's last message.
+void readPixels(TIFF* t, const std::string& path, const Layout& l, const std::string& error, ElevationGrid& g) {
+  const uint32_t w = l.w, h = l.h;
+  const size_t bytes = l.bytes(), stride = l.stride();
+  auto fail = [&](const std::string& what) { io::fail(path, what + (error.empty() ? "" : ": " + error)); };
   // Copies a decoded block of bw x bh pixels whose top-left pixel is (x0, y0).
   auto copyBlock = [&](const std::vector<unsigned char>& buf, uint32_t x0, uint32_t y0, uint32_t bw, uint32_t bh) {
     for (uint32_t r = 0; r < bh && y0 + r < h; ++r)
       for (uint32_t c = 0; c < bw && x0 + c < w; ++c)
-        g.values[static_cast<size_t>(y0 + r) * w + x0 + c] = sample(buf.data() + (static_cast<size_t>(r) * bw + c) * stride * bytes);
+        g.values[static_cast<size_t>(y0 + r) * w + x0 + c] = sampleAt(l, buf.data() + (static_cast<size_t>(r) * bw + c) * stride * bytes);
   };
   if (TIFFIsTiled(t)) {
     uint32_t tw = 0, th = 0;
     TIFFGetField(t, TIFFTAG_TILEWIDTH, &tw);
     TIFFGetField(t, TIFFTAG_TILELENGTH, &th);
-    if (tw == 0 || th == 0) fail("tiled image without tile size");
+    if (tw == 0 || th == 0) io::fail(path, "tiled image without tile size");
     std::vector<unsigned char> buf(static_cast<size_t>(TIFFTileSize(t)));
-    if (buf.size() < static_cast<size_t>(tw) * th * stride * bytes) fail("tile size inconsistent with the tile dimensions");
+    if (buf.size() < static_cast<size_t>(tw) * th * stride * bytes) io::fail(path, "tile size inconsistent with the tile dimensions");
     for (uint32_t y = 0; y < h; y += th)
       for (uint32_t x = 0; x < w; x += tw) {
         if (TIFFReadEncodedTile(t, TIFFComputeTile(t, x, y, 0, 0), buf.data(), static_cast<tmsize_t>(buf.size())) < 0)
-          fail("cannot decode the tile at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")" +
-               (error.empty() ? "" : ": " + error));
+          fail("cannot decode the tile at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")");
         copyBlock(buf, x, y, tw, th);
       }
   } else {
@@ -209,26 +208,30 @@ ElevationGrid readGeoTiff(const std::string& path) {
     TIFFGetFieldDefaulted(t, TIFFTAG_ROWSPERSTRIP, &rps);
     rps = std::min(std::max(rps, 1u), h);
     std::vector<unsigned char> buf(static_cast<size_t>(TIFFStripSize(t)));
-    if (buf.size() < static_cast<size_t>(w) * rps * stride * bytes) fail("strip size inconsistent with the image width");
+    if (buf.size() < static_cast<size_t>(w) * rps * stride * bytes) io::fail(path, "strip size inconsistent with the image width");
     for (uint32_t y = 0; y < h; y += rps) {
       if (TIFFReadEncodedStrip(t, TIFFComputeStrip(t, y, 0), buf.data(), static_cast<tmsize_t>(buf.size())) < 0)
-        fail("cannot decode the strip at row " + std::to_string(y) + (error.empty() ? "" : ": " + error));
+        fail("cannot decode the strip at row " + std::to_string(y));
       copyBlock(buf, 0, y, w, rps);
     }
   }
+}
 
-  // nodata: GDAL's tag, compared in the samples' own precision; NaN cells are nodata as well.
+// nodata: GDAL's tag, compared in the samples' own precision; NaN cells are nodata as well.
+void applyNodata(TIFF* t, const std::string& path, const Layout& l, ElevationGrid& g) {
   const std::string nodataText = getAscii(t, TIFFTAG_GDAL_NODATA);
-  if (!nodataText.empty()) {
-    char* end = nullptr;
-    double nodata = std::strtod(nodataText.c_str(), &end);
-    if (end == nodataText.c_str()) fail("GDAL_NODATA '" + nodataText + "' is not a number");
-    if (format == SAMPLEFORMAT_IEEEFP && bits == 32) nodata = static_cast<float>(nodata);
-    for (double& v : g.values)
-      if (v == nodata) v = std::nan("");
-  }
+  if (nodataText.empty()) return;
+  char* end = nullptr;
+  double nodata = std::strtod(nodataText.c_str(), &end);
+  if (end == nodataText.c_str()) io::fail(path, "GDAL_NODATA '" + nodataText + "' is not a number");
+  if (l.format == SAMPLEFORMAT_IEEEFP && l.bits == 32) nodata = static_cast<float>(nodata);
+  for (double& v : g.values)
+    if (v == nodata) v = std::nan("");
+}
 
-  // Georeferencing.
+// The cell-to-model transform from ModelTransformation, else ModelPixelScale and the first
+// ModelTiepoint (cell corners; PixelIsPoint rasters name cell centres), and whether it is geographic.
+void georeference(TIFF* t, const std::string& path, ElevationGrid& g) {
   const auto keys = getArray<uint16_t>(t, kGeoKeys, "GeoKeyDirectory", path);
   int modelType = 0, rasterType = 1;
   if (keys.size() >= 4) {
@@ -255,6 +258,30 @@ ElevationGrid readGeoTiff(const std::string& path) {
   } else {
     g.notes.push_back("not georeferenced (no ModelPixelScale/ModelTiepoint or ModelTransformation): cells 1 unit apart");
   }
+}
+
+}  // namespace
+
+ElevationGrid readGeoTiff(const std::string& path) {
+  std::string error;
+  TIFFOpenOptions* opts = TIFFOpenOptionsAlloc();
+  TIFFOpenOptionsSetErrorHandlerExtR(opts, onError, &error);
+  TIFFOpenOptionsSetWarningHandlerExtR(opts, onWarning, nullptr);
+  std::unique_ptr<TIFF, Closer> tif(TIFFOpenExt(path.c_str(), "r", opts));
+  TIFFOpenOptionsFree(opts);
+  if (!tif) io::fail(path, "cannot open as TIFF" + (error.empty() ? std::string() : " (" + error + ")"));
+  TIFF* t = tif.get();
+
+  const Layout layout = readLayout(t, path);
+  checkDeclaredSize(t, path, layout);
+  ElevationGrid g;
+  g.width = static_cast<int>(layout.w);
+  g.height = static_cast<int>(layout.h);
+  g.values.assign(static_cast<size_t>(layout.w) * layout.h, std::nan(""));
+  if (layout.spp > 1) g.notes.push_back("the raster has " + std::to_string(layout.spp) + " bands; band 1 is the elevation");
+  readPixels(t, path, layout, error, g);
+  applyNodata(t, path, layout, g);
+  georeference(t, path, g);
   if (TIFFNumberOfDirectories(t) > 1) g.notes.push_back("only the first image of the TIFF is read");
   return g;
 }
