@@ -15,11 +15,12 @@ export interface NoiseOptions {
    */
   amount?: number;
   /**
-   * fixed: |d| = amount AEL; uniform: |d| in [0, amount AEL]; gaussian: sigma = amount AEL.
+   * fixed: |d| = amount AEL; uniform: |d| in [0, amount AEL]; gaussian: sigma = amount AEL;
+   * impulsive: a tenth of the vertices, sigma = amount AEL.
    *
    * Default: `'fixed'`.
    */
-  distribution?: 'fixed' | 'uniform' | 'gaussian';
+  distribution?: 'fixed' | 'uniform' | 'gaussian' | 'impulsive';
   /**
    * random: a uniformly random direction; normal: along the vertex normal.
    *
