@@ -221,9 +221,10 @@ Document readDocument(const std::string& path, const ReadOptions& options) {
     case FileFormat::Ply: doc = io::readPly(path, options); break;
     case FileFormat::Stl: doc = io::readStl(path, options); break;
   }
-  // An OBJ keeps the normals as its vn lines hold them (ObjSource::normals): a normalized one is a
-  // changed one, written back in its vn line.
   for (MeshPart& part : doc.parts) io::unitNormals(path, part, doc.warnings);
+  // An OBJ written back rewrites its vn lines only where the normals differ from these (so that a
+  // round trip without changes is byte-identical, non-unit vn lines included).
+  if (doc.source && doc.source->format == FileFormat::Obj) doc.source->obj.normals = doc.parts.front().normals;
   return doc;
 }
 
