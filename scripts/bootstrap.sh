@@ -76,6 +76,10 @@ if [ "$wasm" = 1 ]; then
   log "wasm build (build/wasm-release)"
   [ -f build/wasm-release/CMakeCache.txt ] || emcmake cmake --preset wasm-release >/dev/null
   cmake --build build/wasm-release -j "$jobs"
+  # The npm package (package/): its TypeScript and the two web flavours, which the app imports as
+  # `geoshift` (an npm workspace, docs/architecture.md#the-npm-package).
+  log "npm package (package/dist)"
+  node package/scripts/build.mjs
 fi
 # --- Python package --------------------------------------------------------------------------
 # Debian's interpreter (a python3 earlier on PATH may not see Debian's packages); the venv sees

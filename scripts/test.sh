@@ -63,6 +63,11 @@ npx --no-install tsc -p web/tsconfig.json --noEmit && echo "tsc: no type errors"
 section "browser end-to-end (playwright-core + chromium)"
 node --test --test-concurrency=1 tests/e2e/ || failed+=(e2e)
 
+# The npm package as its users get it: packed, installed offline into a temporary project,
+# type-checked, run under Node and bundled by Vite into a page in Chromium; and docs/api up to date.
+section "npm package (pack, install, tsc, Node, Vite + chromium)"
+node --test --test-concurrency=1 tests/package/ || failed+=(package)
+
 echo
 if [ "${#failed[@]}" -gt 0 ]; then
   echo "FAILED suites: ${failed[*]}"

@@ -1,7 +1,7 @@
 #pragma once
 // Adapters between JS values and the core: typed arrays are copied in once and out once, and every
 // failure comes back as a value ({ ok: false, error }) instead of a C++ exception, so the JS side
-// never needs exception support or `delete()` calls. Types are declared in geoshift.d.ts.
+// never needs exception support or `delete()` calls. Types are declared in package/src/module.ts.
 #include <string>
 
 #include <emscripten/val.h>
@@ -46,6 +46,10 @@ emscripten::val previewWithoutProgress(int handle, const std::string& op, const 
 // vertices, triangles, warnings } or { ok: false, error[, outOfMemory] } with the CLI's message
 // (read_file.cpp). Nothing of the file is kept.
 emscripten::val readFile(const std::string& name, const emscripten::val& bytes, double maxVertices);
+// The same (maxVertices 0: the CLI's limit), and with withArrays each part also carries its arrays in the file's vertex order:
+// positions (Float32Array), indices (Uint32Array), normals? , colors? (RGBA), attributes (name ->
+// Float32Array of dim per vertex) and transforms (Float64Array, 16 per instance, column-major).
+emscripten::val readFileWithArrays(const std::string& name, const emscripten::val& bytes, double maxVertices, bool withArrays);
 // The same with the CLI's default limit (ReadOptions::maxVertices).
 emscripten::val readFileWithDefaultLimit(const std::string& name, const emscripten::val& bytes);
 

@@ -1,6 +1,6 @@
 // Registrations only; the adapters that turn typed arrays into core calls live in api.cpp,
 // preview.cpp, read_file.cpp and param_specs.cpp, the ops in ops_*.cpp, and the TypeScript view of
-// these exports is geoshift.d.ts.
+// these exports is package/src/module.ts.
 #include <emscripten/bind.h>
 
 #include "adapters.hpp"
@@ -16,6 +16,7 @@ EMSCRIPTEN_BINDINGS(geoshift) {
   emscripten::function("preview", &geoshift::wasm::previewWithoutProgress);
   emscripten::function("readFile", &geoshift::wasm::readFile);
   emscripten::function("readFile", &geoshift::wasm::readFileWithDefaultLimit);
+  emscripten::function("readFile", &geoshift::wasm::readFileWithArrays);
   emscripten::function("ops", &geoshift::wasm::listOps);
   emscripten::function("presets", &geoshift::wasm::listPresets);
   emscripten::function("paramSpecs", &geoshift::wasm::listParamSpecs);

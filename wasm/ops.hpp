@@ -4,9 +4,10 @@
 // Adding an op: add its parameter table to core/src/param_specs.cpp (names, types, defaults,
 // ranges: the only place that knows them), write wasm/ops_NAME.cpp defining `OpOutput
 // runNAME(const OpContext&)`, declare it below, and add one line to the table in ops.cpp.
-// wasm/CMakeLists.txt picks up every wasm/*.cpp; geoshift.d.ts lists the ops and their parameters
-// for TypeScript (paramSpecs() gives them at run time). An op never changes the session itself: it works on copies and
-// returns what changed; the dispatcher commits that only when the op succeeded.
+// wasm/CMakeLists.txt picks up every wasm/*.cpp; the npm package's option types are generated from
+// the tables (paramSpecs(); package/scripts/generate-options.mjs). An op never changes the session
+// itself: it works on copies and returns what changed; the dispatcher commits that only when the op
+// succeeded.
 #include <atomic>
 #include <optional>
 #include <string>

@@ -5,6 +5,7 @@
 // written to Emscripten's in-memory file system under the file's own name, in a directory that is
 // the current one: the core's messages then begin with the bare name, as the CLI's do when it is
 // run beside the file. The copy is removed before returning, whatever happened.
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <system_error>
@@ -41,7 +42,39 @@ struct TemporaryFile {
   }
 };
 
-val readFileChecked(const std::string& name, const val& bytes, double maxVertices) {
+// The part's arrays in the file's own vertex order, for callers that filter what they read (the npm
+// package's read()): positions, indices, and normals, RGBA colors, extra attributes and the
+// instances' world transforms (column-major 4x4) where the file has them.
+void setArrays(val& p, const MeshPart& part) {
+  std::vector<float> positions(3 * part.positions.size());
+  for (std::size_t i = 0; i < part.positions.size(); ++i)
+    for (int c = 0; c < 3; ++c) positions[3 * i + c] = static_cast<float>(part.positions[i][c]);
+  p.set("positions", copyOut("Float32Array", positions));
+  std::vector<std::uint32_t> indices(3 * part.faces.size());
+  for (std::size_t f = 0; f < part.faces.size(); ++f)
+    for (int c = 0; c < 3; ++c) indices[3 * f + c] = static_cast<std::uint32_t>(part.faces[f][c]);
+  p.set("indices", copyOut("Uint32Array", indices));
+  if (!part.normals.empty()) {
+    std::vector<float> normals(3 * part.normals.size());
+    for (std::size_t i = 0; i < part.normals.size(); ++i)
+      for (int c = 0; c < 3; ++c) normals[3 * i + c] = static_cast<float>(part.normals[i][c]);
+    p.set("normals", copyOut("Float32Array", normals));
+  }
+  if (!part.colors.empty()) {
+    std::vector<float> colors(4 * part.colors.size());
+    for (std::size_t i = 0; i < part.colors.size(); ++i)
+      for (int c = 0; c < 4; ++c) colors[4 * i + c] = static_cast<float>(part.colors[i][c]);
+    p.set("colors", copyOut("Float32Array", colors));
+  }
+  val attributes = val::object();
+  for (const ExtraAttribute& extra : part.extras) attributes.set(extra.name, floatsOut(extra.values));
+  p.set("attributes", attributes);
+  std::vector<double> transforms;
+  for (const Eigen::Matrix4d& m : part.instances) transforms.insert(transforms.end(), m.data(), m.data() + 16);
+  p.set("transforms", copyOut("Float64Array", transforms));
+}
+
+val readFileChecked(const std::string& name, const val& bytes, double maxVertices, bool withArrays) {
   if (!isA(bytes, "Uint8Array")) throw InputError("the file's bytes must be a Uint8Array");
   if (!(maxVertices >= 1)) throw InputError("maxVertices must be at least 1");
   const std::vector<unsigned char> data = emscripten::convertJSArrayToNumberVector<unsigned char>(bytes);
@@ -83,6 +116,7 @@ val readFileChecked(const std::string& name, const val& bytes, double maxVertice
     p.set("triangles", static_cast<double>(part.faces.size()));
     p.set("instances", static_cast<double>(part.instances.size()));
     p.set("report", reportToJs(report));
+    if (withArrays) setArrays(p, part);
     parts.call<void>("push", p);
     vertices += static_cast<double>(part.positions.size());
     triangles += static_cast<double>(part.faces.size());
@@ -96,14 +130,22 @@ val readFileChecked(const std::string& name, const val& bytes, double maxVertice
   return result;
 }
 
-}  // namespace
-
-val readFile(const std::string& name, const val& bytes, double maxVertices) {
-  val result = guarded([&] { return readFileChecked(name, bytes, maxVertices); });
-  // The heap's limit may be the page's budget rather than wasm32's 4 GB (geoshift.worker.ts).
+val readFileResult(const std::string& name, const val& bytes, double maxVertices, bool withArrays) {
+  val result = guarded([&] { return readFileChecked(name, bytes, maxVertices, withArrays); });
+  // The heap's limit may be the page's budget rather than wasm32's 4 GB (package/src/host.ts).
   if (result["outOfMemory"].isTrue())
     result.set("error", bareName(name) + ": out of memory: reading it needs more memory than the WebAssembly heap may grow to");
   return result;
+}
+
+}  // namespace
+
+val readFile(const std::string& name, const val& bytes, double maxVertices) {
+  return readFileResult(name, bytes, maxVertices, false);
+}
+
+val readFileWithArrays(const std::string& name, const val& bytes, double maxVertices, bool withArrays) {
+  return readFileResult(name, bytes, maxVertices == 0 ? static_cast<double>(ReadOptions{}.maxVertices) : maxVertices, withArrays);
 }
 
 val readFileWithDefaultLimit(const std::string& name, const val& bytes) {

@@ -1,63 +1,54 @@
-// The module's parameter tables (paramSpecs(), the core's params.hpp: what the ops accept) and
-// OpParams of wasm/geoshift.d.ts (what TypeScript callers may send) name the same ops with the same
-// parameters and choices, so that any op or parameter added or changed on one side only fails here.
-// The tables also hold what the ops do: an unknown name is refused, each default is accepted.
+// The module's parameter tables (paramSpecs(), the core's params.hpp: what the ops accept) and the
+// npm package's TypeScript options (package/src/options.ts, generated from those tables by
+// package/scripts/generate-options.mjs) say the same: the committed file is what the generator
+// makes of the tables now, so an op or parameter added or changed in the core fails here until the
+// file is regenerated (npm run generate:options). tests/package compiles programs against the
+// packed types (a wrong option name or type must not compile). The tables also hold what the ops
+// do: an unknown name is refused, each default is accepted.
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { before, test } from 'node:test';
 
+import { optionsFile, render } from '../../package/scripts/generate-options.mjs';
 import { loadGeoshift } from './support.mjs';
 import { box } from './filter-support.mjs';
-
-const source = (path) => readFileSync(new URL(`../../${path}`, import.meta.url), 'utf8');
 
 let geoshift;
 before(async () => {
   geoshift = await loadGeoshift();
 });
 
-/** op -> { name -> its declared type text }, from the members `name: { a?: T; b?: U };` of OpParams. */
-function declaredParams(dts) {
-  const start = dts.indexOf('export interface OpParams {');
-  const body = dts.slice(start, dts.indexOf('\n}\n', start));
-  const withoutComments = body.replace(/\/\*[\s\S]*?\*\//g, '').replace(/\/\/.*$/gm, '');
-  const ops = new Map();
-  for (const m of withoutComments.matchAll(/^\s*(\w+)\s*:\s*\{([^}]*)\}\s*;/gm)) {
-    ops.set(m[1], new Map([...m[2].matchAll(/(\w+)\??\s*:\s*([^;]+);?/g)].map((p) => [p[1], p[2].trim()])));
-  }
-  return ops;
-}
-
-test('the parsers read something (a change of layout must not make the comparison empty)', () => {
-  const declared = declaredParams(source('wasm/geoshift.d.ts'));
-  assert.ok(declared.size >= 5, `geoshift.d.ts: ${[...declared.keys()]}`);
-  assert.ok(declared.get('filter')?.has('signal'), 'geoshift.d.ts filter params');
-  assert.ok(Object.keys(geoshift.paramSpecs()).length >= 5);
+test('every op has a parameter table, and package/src/options.ts is what the generator makes of the tables', () => {
+  const specs = geoshift.paramSpecs();
+  assert.ok(Object.keys(specs).length >= 7, `ops: ${Object.keys(specs)}`);
+  assert.deepEqual([...geoshift.ops()].sort(), Object.keys(specs).sort(), 'ops() against paramSpecs()');
+  assert.equal(readFileSync(optionsFile, 'utf8'), render(specs), 'package/src/options.ts is out of date: npm run generate:options');
 });
 
-test('every op has a parameter table, and geoshift.d.ts declares the same ops, names and choices', () => {
+test('the generated options carry each table\'s names, types, choices, defaults and renames', () => {
   const specs = geoshift.paramSpecs();
-  const declared = declaredParams(source('wasm/geoshift.d.ts'));
-  assert.deepEqual([...geoshift.ops()].sort(), Object.keys(specs).sort(), 'ops() against paramSpecs()');
-  assert.deepEqual([...declared.keys()].sort(), Object.keys(specs).sort(), 'ops');
+  const text = render(specs);
   for (const [op, { params }] of Object.entries(specs)) {
-    assert.deepEqual([...declared.get(op).keys()].sort(), Object.keys(params).sort(), `parameters of op "${op}"`);
+    const start = text.indexOf(`export interface ${op[0].toUpperCase()}${op.slice(1)}Options {`);
+    assert.ok(start >= 0, `no interface for ${op}`);
+    const body = text.slice(start, text.indexOf('\n}\n', start));
     for (const [name, spec] of Object.entries(params)) {
-      const type = declared.get(op).get(name);
-      if (spec.type === 'enum') {
-        const choices = [...type.matchAll(/'([^']*)'/g)].map((m) => m[1]).sort();
-        assert.deepEqual(choices, [...spec.values].sort(), `choices of ${op}.${name}`);
-      } else {
-        const ts = { number: 'number', integer: 'number', boolean: 'boolean', string: 'string' }[spec.type];
-        assert.equal(type, spec.list ? `${ts} | ${ts}[]` : ts, `type of ${op}.${name}`);
-      }
+      const declared = op === 'filter' && name === 'signal' ? 'field' : name;
+      const type = body.match(new RegExp(`\\n  ${declared}\\?: ([^;]+);`))?.[1];
+      assert.ok(type, `${op}.${name} is not declared`);
+      if (spec.type === 'enum') assert.deepEqual(type.split(' | ').map((t) => t.slice(1, -1)).sort(), [...spec.values].sort(), `choices of ${op}.${name}`);
+      else assert.equal(type, { number: 'number', integer: 'number', boolean: 'boolean', string: 'string' }[spec.type] + (spec.list ? ' | number[]' : ''), `type of ${op}.${name}`);
     }
   }
-});
-
-test('the comparison sees a difference (a parameter on one side only)', () => {
-  const dts = source('wasm/geoshift.d.ts').replace("kind?: 'abs'", "extra?: number; kind?: 'abs'");
-  assert.notDeepEqual([...declaredParams(dts).get('curvature').keys()].sort(), Object.keys(geoshift.paramSpecs().curvature.params).sort());
+  // A parameter added to a table appears; a choice added to an enum too.
+  const changed = structuredClone(specs);
+  changed.curvature.params.extra = { type: 'integer', doc: 'An extra.', default: 3, min: 1 };
+  changed.curvature.params.kind.values.push('extraKind');
+  const again = render(changed);
+  assert.match(again, /\n  extra\?: number;/);
+  assert.match(again, /Default: `3`\. A whole number ≥ 1\./);
+  assert.match(again, /'extraKind'/);
+  assert.match(text, /export const coreNames[^]*filter: \{ field: 'signal' \}/);
 });
 
 test('each op accepts every default of its table and refuses a name it does not have, listing the accepted ones', () => {

@@ -1,6 +1,6 @@
-// The worker's logic (web/src/worker/engine.ts) driven in Node with the Node build of the module:
+// The worker's logic (package/src/engine.ts) driven in Node with the Node build of the module:
 // requests in, messages out, as the page would see them. The TypeScript files are transpiled on the
-// fly with the project's own `typescript`, so the test runs the app's very source.
+// fly with the project's own `typescript`, so the test runs the package's very source.
 import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -12,23 +12,23 @@ import ts from 'typescript';
 import { loadGeoshift, repoRoot, saddle } from './support.mjs';
 
 let Engine;
-let GeoshiftApi;
+let ModuleApi;
 let isRequest;
 let module;
 
 before(async () => {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-engine-'));
-  const src = path.join(repoRoot, 'web/src/worker');
-  for (const name of ['engine', 'wasm-api', 'protocol']) {
+  const src = path.join(repoRoot, 'package/src');
+  fs.writeFileSync(path.join(dir, 'package.json'), '{ "type": "module" }\n');
+  for (const name of ['engine', 'module-api', 'protocol', 'errors']) {
     const { outputText } = ts.transpileModule(fs.readFileSync(path.join(src, `${name}.ts`), 'utf8'), {
       compilerOptions: { module: ts.ModuleKind.ESNext, target: ts.ScriptTarget.ES2022, verbatimModuleSyntax: true },
     });
-    // Relative imports of the sources have no extension (Vite resolves them); Node needs one.
-    fs.writeFileSync(path.join(dir, `${name}.mjs`), outputText.replace(/from '(\.\/[\w-]+)'/g, "from '$1.mjs'"));
+    fs.writeFileSync(path.join(dir, `${name}.js`), outputText);
   }
-  const load = async (name) => import(pathToFileURL(path.join(dir, `${name}.mjs`)).href);
+  const load = async (name) => import(pathToFileURL(path.join(dir, `${name}.js`)).href);
   ({ Engine } = await load('engine'));
-  ({ GeoshiftApi } = await load('wasm-api'));
+  ({ ModuleApi } = await load('module-api'));
   ({ isRequest } = await load('protocol'));
   module = await loadGeoshift();
 });
@@ -37,7 +37,7 @@ before(async () => {
 function engineWith(options = {}) {
   const posted = [];
   let t = 0;
-  const engine = new Engine(new GeoshiftApi(module), (message, transfer) => posted.push({ message, transfer }), {
+  const engine = new Engine(new ModuleApi(module), (message, transfer) => posted.push({ message, transfer }), {
     now: () => (t += 10),
     ...options,
   });
@@ -97,7 +97,7 @@ test('errors come back as typed error messages and the engine stays usable', () 
   assert.match(messages().at(-1).message, /unknown parameter "bogus"/);
   engine.handle({ type: 'run', id: 5, meshId: 'm', op: 'curvature', params: {} });
   assert.equal(messages().at(-1).type, 'result');
-  assert.ok(messages().at(-1).output.scalars._CURVATURE instanceof Float32Array);
+  assert.ok(messages().at(-1).output.attributes._CURVATURE instanceof Float32Array);
 });
 
 test('a shared cancel flag holding the run id stops that run only', () => {
@@ -130,7 +130,7 @@ test('with the threaded module, the shared flag cancels too and results match th
     const flag = new Int32Array(new SharedArrayBuffer(4));
     const runs = [module, threaded].map((m) => {
       const posted = [];
-      const engine = new Engine(new GeoshiftApi(m), (message) => posted.push(message), { cancelFlag: flag });
+      const engine = new Engine(new ModuleApi(m), (message) => posted.push(message), { cancelFlag: flag });
       engine.handle(loadRequest(1));
       engine.handle({ type: 'run', id: 2, meshId: 'm', op: 'smooth', params: { iterations: 6, weights: 'cotangent' } });
       Atomics.store(flag, 0, 3);
@@ -146,20 +146,49 @@ test('with the threaded module, the shared flag cancels too and results match th
   }
 });
 
-test('read: the core\'s counts for a good file, the CLI\'s message (kind input) for a damaged one', () => {
-  const { engine, messages } = engineWith();
+test('read: the core\'s counts and arrays for a good file, the CLI\'s message (kind input) for a damaged one', () => {
+  const { engine, posted, messages } = engineWith();
   const obj = 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n';
-  const good = { type: 'read', id: 1, fileName: 'quad.obj', bytes: new TextEncoder().encode(obj) };
+  const good = { type: 'read', id: 1, fileName: 'quad.obj', bytes: new TextEncoder().encode(obj), maxVertices: 0, arrays: true };
   assert.ok(isRequest(good));
   engine.handle(good);
-  const bad = { type: 'read', id: 2, fileName: 'quad.obj', bytes: new TextEncoder().encode(obj.replace('f 2 4 3', 'f 2 5 3')) };
+  const bad = { type: 'read', id: 2, fileName: 'quad.obj', bytes: new TextEncoder().encode(obj.replace('f 2 4 3', 'f 2 5 3')), maxVertices: 0, arrays: false };
   engine.handle(bad);
-  assert.ok(!isRequest({ type: 'read', id: 3, fileName: 'x.obj', bytes: [1, 2] }), 'bytes must be a Uint8Array');
-  const [r1, r2] = messages();
+  engine.handle({ type: 'read', id: 3, fileName: 'quad.obj', bytes: new TextEncoder().encode(obj), maxVertices: 3, arrays: false });
+  assert.ok(!isRequest({ type: 'read', id: 4, fileName: 'x.obj', bytes: [1, 2], maxVertices: 0, arrays: false }), 'bytes must be a Uint8Array');
+  const [r1, r2, r3] = messages();
   assert.equal(r1.type, 'result');
   assert.equal(r1.kind, 'read');
   assert.equal(r1.info.vertices, 4);
   assert.equal(r1.info.triangles, 2);
-  assert.deepEqual(r1.info.parts.map((p) => p.label), ['quad.obj']);
+  const [part] = r1.info.parts;
+  assert.equal(part.label, 'quad.obj');
+  assert.deepEqual([...part.positions], [0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0]);
+  assert.deepEqual([...part.indices], [0, 1, 2, 1, 3, 2]);
+  assert.deepEqual([...part.transforms], [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]);
+  assert.ok(posted[0].transfer.includes(part.positions.buffer), 'the arrays are not transferred');
   assert.deepEqual(r2, { type: 'error', id: 2, kind: 'input', message: "quad.obj: face 2 (group '') references vertex 5 but the file has 4 vertices" });
+  assert.equal(r3.type, 'error');
+  assert.match(r3.message, /quad\.obj.*4 vertices.*3/, 'maxVertices is passed to the readers');
+});
+
+test('a job loads, runs and forgets in one request, and always answers with positions', () => {
+  const { engine, posted, messages } = engineWith();
+  const { positions, indices } = saddle(12);
+  engine.handle({ type: 'job', id: 1, op: 'curvature', params: { kind: 'mean' }, positions: positions.slice(), indices });
+  const curvature = posted.at(-1);
+  assert.equal(curvature.message.kind, 'job');
+  assert.deepEqual(curvature.message.output.positions, positions, 'an op that keeps the positions answers with the input\'s');
+  assert.ok(curvature.message.output.attributes._CURVATURE instanceof Float32Array);
+  assert.equal(curvature.message.output.report.inputVertices, 13 * 13);
+  engine.handle({ type: 'job', id: 2, op: 'smooth', params: { iterations: 3 }, positions: positions.slice(), indices });
+  const smooth = posted.at(-1).message.output.positions;
+  assert.notDeepEqual(smooth, positions);
+  // Nothing stays loaded: the same run through load + run gives the same numbers.
+  engine.handle({ type: 'load', id: 3, meshId: 'm', positions: positions.slice(), indices });
+  engine.handle({ type: 'run', id: 4, meshId: 'm', op: 'smooth', params: { iterations: 3 } });
+  assert.deepEqual(messages().at(-1).output.positions, smooth);
+  engine.handle({ type: 'job', id: 5, op: 'smooth', params: { iterations: 3, bogus: 1 }, positions: positions.slice(), indices });
+  assert.equal(messages().at(-1).type, 'error');
+  assert.match(messages().at(-1).message, /unknown parameter "bogus"/);
 });

@@ -7,14 +7,13 @@
 // core cannot, so such files skip this check and keep the app's own (gltf.ts).
 
 import { LoadError } from './load-error';
-import type { ReadInfo } from './worker/protocol';
-import { GeoshiftError } from './worker/wasm-api';
+import { GeoshiftError } from 'geoshift';
+import type { ReadInfo } from './worker/client';
 
 /** The worker client's part used here (client.ts). */
 export interface CoreReader {
   ready(): Promise<unknown>;
   read(fileName: string, bytes: ArrayBuffer): Promise<ReadInfo>;
-  restart(): void;
 }
 
 /**
@@ -75,9 +74,8 @@ export async function checkWithCore(reader: CoreReader, fileName: string, data: 
       switch (error.kind) {
         case 'input':
           throw new CoreReadError(sentence(error.message));
-        case 'memory':
-          // The heap grew as far as it may and stays that large: a fresh worker starts small.
-          reader.restart();
+        case 'out-of-memory':
+          // The heap grew as far as it may; the package has started a fresh worker, whose heap is small.
           throw new LoadError(
             'it is too large for the memory this browser tab may use (reading it needs more than the WebAssembly heap can grow to); try the command-line tool',
           );

@@ -14,8 +14,7 @@ import { HEIGHT, heightOf } from './runner';
 import type { ScalarView } from './scalar-view';
 import type { Viewer } from './viewer';
 import type { ViewModeControl } from './view-mode-control';
-import type { WorkerClient } from './worker/client';
-import type { RunOutput } from './worker/protocol';
+import type { RunOutput, WorkerClient } from './worker/client';
 
 /**
  * Sizes of the coarse level, largest first. A preview starts at the first; one slower than

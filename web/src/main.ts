@@ -59,8 +59,7 @@ function start(): Promise<void> {
   const scalars = new ScalarView(element('scalar-select', HTMLSelectElement), legend, () => viewer.geometryChanged());
   const viewMode = new ViewModeControl(element('view-mode', HTMLSelectElement), viewer, (mode) => scalars.setActive(mode === 'scalar'));
 
-  const wasmBase = new URL(`${import.meta.env.BASE_URL}wasm/`, location.href).href;
-  const client = new WorkerClient(wasmBase, requestedBuild(), requestedHeapMB());
+  const client = new WorkerClient(requestedBuild(), requestedHeapMB());
   const panel = new ParameterPanel(
     element('preset-select', HTMLSelectElement),
     element('preset-summary', HTMLElement),

@@ -4,7 +4,8 @@
 // the file's vertex layout, so export writes them where the file had its vertices.
 
 import { BufferAttribute, type BufferGeometry, type Mesh } from 'three';
-import type { MeshArrays, RunOutput } from './worker/protocol';
+import { geometryToMesh } from 'geoshift/three';
+import type { MeshArrays, RunOutput } from './worker/client';
 import { SCALAR_COLOR } from './materials';
 
 export interface MeshState {
@@ -44,32 +45,18 @@ export function meshStates(meshes: Mesh[]): MeshState[] {
   return meshes.map((mesh, i) => ({ id: `${file}:${i}`, mesh, original: mesh.geometry.clone(), before: null, preNoise: null, reference: null, previewBase: null }));
 }
 
-function floats(geometry: BufferGeometry, name: string, itemSize: number): Float32Array | undefined {
-  const a = geometry.getAttribute(name);
-  if (!a) return undefined;
-  const out = new Float32Array(a.count * itemSize);
-  const size = Math.min(itemSize, a.itemSize);
-  for (let i = 0; i < a.count; i++) {
-    // getComponent denormalizes quantized and normalized attributes.
-    for (let k = 0; k < size; k++) out[i * itemSize + k] = a.getComponent(i, k);
-  }
-  return out;
-}
-
 /** Scalar attributes of a geometry (one number per vertex, not one of three's standard ones). */
 export function scalarNames(geometry: BufferGeometry): string[] {
   return Object.keys(geometry.attributes).filter((name) => geometry.getAttribute(name).itemSize === 1 && name !== SCALAR_COLOR);
 }
 
-/** The arrays the worker needs, as fresh copies it may keep. */
+/** The arrays the worker needs, as fresh copies it may keep (the package's conversion of any layout three produces). */
 export function meshArrays(geometry: BufferGeometry): MeshArrays & { scalars: Record<string, Float32Array> } {
-  const positions = floats(geometry, 'position', 3)!;
-  const vertexCount = positions.length / 3;
-  const indices = geometry.index ? Uint32Array.from(geometry.index.array as ArrayLike<number>) : Uint32Array.from({ length: vertexCount - (vertexCount % 3) }, (_, i) => i);
-  const arrays: MeshArrays & { scalars: Record<string, Float32Array> } = { positions, indices, scalars: {} };
-  const colors = floats(geometry, 'color', 3);
+  const { positions, indices, colors, attributes = {} } = geometryToMesh(geometry);
+  const arrays: MeshArrays & { scalars: Record<string, Float32Array> } = { positions, scalars: {} };
+  if (indices) arrays.indices = indices;
   if (colors) arrays.colors = colors;
-  for (const name of scalarNames(geometry)) arrays.scalars[name] = floats(geometry, name, 1)!;
+  for (const name of scalarNames(geometry)) if (attributes[name]) arrays.scalars[name] = attributes[name];
   return arrays;
 }
 

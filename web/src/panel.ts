@@ -3,7 +3,7 @@
 // switching back and forth keeps what the user typed.
 
 import GUI from 'lil-gui';
-import type { CorePreset } from '../../wasm/geoshift';
+import type { CorePreset } from 'geoshift';
 import { PRESETS, applyCorePresets, hasValues, paramsOf, presetById, type Param, type Preset } from './presets';
 import { HEIGHT } from './runner';
 import { orderSignals } from './signal-order';

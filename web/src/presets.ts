@@ -3,7 +3,7 @@
 // average edge length (AEL). The values of the filter presets are the core's (filterPresets(),
 // docs/algorithms.md#presets), read from the module when it starts (applyCorePresets).
 
-import type { CorePreset } from '../../wasm/geoshift';
+import type { CorePreset } from 'geoshift';
 
 export interface NumberParam {
   key: string;

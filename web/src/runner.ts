@@ -3,8 +3,7 @@
 
 import { applyOutput, baseGeometry, dropPreview, meshArrays, rmsError, snapshot, type MeshState } from './model';
 import type { Preset } from './presets';
-import type { RunOutput } from './worker/protocol';
-import { GeoshiftError, type WorkerClient } from './worker/client';
+import { GeoshiftError, type RunOutput, type WorkerClient } from './worker/client';
 
 export interface RunReport {
   op: string;
@@ -129,7 +128,7 @@ export function describeRunFailure(error: unknown): string {
     switch (error.kind) {
       case 'cancelled':
         return 'Cancelled; the mesh is unchanged.';
-      case 'memory':
+      case 'out-of-memory':
         return 'Out of memory: the mesh is too large for the browser. Try a smaller mesh, or the command-line tool.';
       case 'input':
         return `The filter could not run: ${error.message}. The mesh is unchanged.`;

@@ -1,221 +1,158 @@
-// The page's side of the worker: request ids, promises, progress callbacks, and cancel.
-//
-// Cancel: with the threaded build the page shares an Int32 flag with the worker and stores the id
-// of the run to stop; the module sees it at its next progress step (~100 ms) and the run fails as
-// cancelled. Without cross-origin isolation there is no shared memory, so the page terminates the
-// worker and starts a new one; the run fails as cancelled at once. The page is the keeper of the
-// meshes (it loads the current geometry before each run), so a new worker loses nothing.
+// The app's bookkeeping over the `geoshift` package (package/, docs/architecture.md#the-npm-package),
+// which owns the worker, its protocol and cancel: the app names its meshes by id (one per mesh of
+// the open file, and one per preview session), has one run at a time and a Cancel button. Nothing
+// here talks to the worker or the module directly.
 
-import type { CorePreset } from '../../../wasm/geoshift';
-import type { ErrorKind, LoadInfo, MeshArrays, ReadInfo, Request, Response, RunOutput } from './protocol';
-import { isResponse, transferables } from './protocol';
-import { GeoshiftError } from './wasm-api';
+import { coreNames, createGeoshift, GeoshiftError, type Geoshift, type GeoshiftInfo, type GeoshiftMesh, type MeshUpdate, type OpName, type OpOptions, type ReadResult } from 'geoshift';
 
 export { GeoshiftError };
 
-export interface WorkerInfo {
-  threaded: boolean;
-  threads: number;
-  ops: string[];
-  /** The core's filter presets, whose values the panel shows. */
-  presets: CorePreset[];
+export type WorkerInfo = GeoshiftInfo;
+export type ReadInfo = ReadResult;
+
+/** A mesh as the page holds it, in its own (three.js) vertex layout. */
+export interface MeshArrays {
+  positions: Float32Array;
+  indices?: Uint32Array;
+  /** RGB or RGBA per vertex, linear [0, 1]. */
+  colors?: Float32Array;
+  /** Named one-number-per-vertex signals (terrain attributes, earlier results). */
+  scalars?: Record<string, Float32Array>;
+}
+
+/** What a run changed, as the app applies it (model.ts). */
+export interface RunOutput {
+  positions?: Float32Array;
+  colors?: Float32Array;
+  scalars: Record<string, Float32Array>;
+  stats: MeshUpdate['stats'];
 }
 
 export type ProgressListener = (fraction: number, stage: string) => void;
 
-interface Pending {
-  resolve: (value: Response) => void;
-  reject: (error: Error) => void;
-  onProgress?: ProgressListener;
-}
-
 type Build = 'auto' | 'single' | 'threaded';
 
-/** How long a threaded run may take to notice the cancel flag before its worker is replaced. */
-const CANCEL_GRACE_MS = 350;
-
-// Without an explicit request payload type per message, `Omit` over the union keeps each member.
-type RequestBody = Request extends infer R ? (R extends { id: number } ? Omit<R, 'id'> : never) : never;
-
 export class WorkerClient {
-  private worker!: Worker;
-  private nextId = 1;
-  private readonly pending = new Map<number, Pending>();
-  private readonly cancelFlag: Int32Array | null;
-  private started!: Promise<WorkerInfo>;
-  private runningId = 0;
-  private readonly previewIds = new Set<number>();
-  private threaded = false;
+  private readonly started: Promise<Geoshift>;
+  private readonly meshes = new Map<string, Promise<GeoshiftMesh>>();
+  /** The run or preview in progress, to cancel. */
+  private current: { controller: AbortController; preview: boolean } | null = null;
 
   constructor(
-    private readonly wasmBase: string,
-    private readonly build: Build = 'auto',
+    build: Build = 'auto',
     /** The single-threaded build's heap limit in MB (?heap=, main.ts); default: wasm32's 4 GB. */
-    private readonly heapMB?: number,
+    heapMB?: number,
   ) {
-    this.cancelFlag = typeof SharedArrayBuffer !== 'undefined' && crossOriginIsolated ? new Int32Array(new SharedArrayBuffer(4)) : null;
-    this.spawn();
+    const threads = build === 'single' ? 1 : build === 'threaded' ? Math.max(2, Math.min(navigator.hardwareConcurrency || 4, 8)) : 'auto';
+    this.started = createGeoshift({ threads, ...(heapMB ? { maxMemoryMB: Math.max(64, heapMB) } : {}) });
+    this.started.catch(() => undefined);
   }
 
   /** Resolves with what the worker runs once its module is ready; rejects if it cannot start. */
-  ready(): Promise<WorkerInfo> {
-    return this.started;
+  async ready(): Promise<WorkerInfo> {
+    return (await this.started).info;
   }
 
   /**
-   * Reads a file with the core's readers (a copy of the bytes is transferred; the caller keeps its
-   * own). Rejects with a GeoshiftError of kind 'input' (the CLI's message) or 'memory'.
+   * Reads a file with the core's readers, counts only (the caller keeps its bytes). Rejects with a
+   * GeoshiftError of kind 'input' (the CLI's message) or 'out-of-memory' (the package then starts
+   * a fresh worker, whose heap is small again).
    */
   async read(fileName: string, bytes: ArrayBuffer): Promise<ReadInfo> {
-    const copy = new Uint8Array(bytes.slice(0));
-    const response = await this.request({ type: 'read', fileName, bytes: copy }, () => [copy.buffer]);
-    return (response as Extract<Response, { kind: 'read' }>).info;
+    return (await this.started).read(bytes, fileName, { meshes: false });
   }
 
-  /**
-   * Replaces the worker by a fresh one (its heap, grown by a file that did not fit, is released);
-   * whatever was pending fails as cancelled. The page reloads meshes before each run.
-   */
-  restart(): void {
-    this.respawn();
-  }
-
-  /** Copies the mesh into the worker (copies of the arrays are transferred; the caller keeps its own). */
-  async load(meshId: string, mesh: MeshArrays): Promise<LoadInfo> {
-    const response = await this.request({ type: 'load', meshId, ...copyMesh(mesh) }, transferablesOf);
-    return (response as Extract<Response, { kind: 'load' }>).info;
+  /** Copies the mesh into the worker under `meshId` (replacing what was there). */
+  async load(meshId: string, mesh: MeshArrays): Promise<void> {
+    const gs = await this.started;
+    void this.free(meshId);
+    const loading = gs.load({
+      positions: mesh.positions,
+      ...(mesh.indices ? { indices: mesh.indices } : {}),
+      ...(mesh.colors ? { colors: mesh.colors } : {}),
+      ...(mesh.scalars ? { attributes: mesh.scalars } : {}),
+    });
+    this.meshes.set(meshId, loading);
+    loading.catch(() => this.meshes.get(meshId) === loading && this.meshes.delete(meshId));
+    await loading;
   }
 
   async free(meshId: string): Promise<void> {
-    await this.request({ type: 'free', meshId });
+    const kept = this.meshes.get(meshId);
+    this.meshes.delete(meshId);
+    if (kept) await (await kept).free();
   }
 
   async run(meshId: string, op: string, params: Record<string, unknown>, onProgress?: ProgressListener): Promise<RunOutput> {
-    const response = await this.request({ type: 'run', meshId, op, params }, () => [], onProgress);
-    return (response as Extract<Response, { kind: 'run' }>).output;
+    const mesh = await this.mesh(meshId);
+    const controller = this.begin(false);
+    try {
+      const options = { ...optionsOf(op, params), signal: controller.signal, ...(onProgress ? { onProgress } : {}) };
+      return outputOf(await mesh.run(op as OpName, options));
+    } finally {
+      this.end(controller);
+    }
   }
 
   /** The op on a coarse level of a loaded mesh (live preview); the worker's mesh is not changed. */
   async preview(meshId: string, op: string, params: Record<string, unknown>, maxVertices: number): Promise<RunOutput> {
-    const response = await this.request({ type: 'preview', meshId, op, params, maxVertices });
-    return (response as Extract<Response, { kind: 'run' }>).output;
+    const mesh = await this.mesh(meshId);
+    const controller = this.begin(true);
+    try {
+      return outputOf(await mesh.preview(op as OpName, { ...optionsOf(op, params), maxVertices, signal: controller.signal }));
+    } finally {
+      this.end(controller);
+    }
   }
 
   /**
-   * Asks a running preview to stop, through the shared flag only (threaded build): the worker and
-   * the coarse level it keeps stay. Without the flag the preview finishes and its caller drops it.
+   * Asks a running preview to stop: with threads at once, keeping the worker and the coarse level it
+   * analysed; without, the preview finishes and its caller drops it.
    */
   stopPreview(): void {
-    const id = this.runningId;
-    if (!id || !this.pending.has(id) || !this.previewIds.has(id) || !this.cancelFlag || !this.threaded) return;
-    Atomics.store(this.cancelFlag, 0, id);
+    if (this.current?.preview) this.current.controller.abort();
   }
 
   /** Stops the current run, if any; its promise rejects with a GeoshiftError of kind 'cancelled'. */
   cancel(): void {
-    const id = this.runningId;
-    if (!id || !this.pending.has(id)) return;
-    if (this.cancelFlag && this.threaded) {
-      Atomics.store(this.cancelFlag, 0, id);
-      this.worker.postMessage({ type: 'cancel', id: this.nextId++, runId: id } satisfies Request);
-      // An op that does not report progress for a while cannot see the flag: do not wait for it.
-      setTimeout(() => {
-        if (this.pending.has(id)) this.respawn();
-      }, CANCEL_GRACE_MS);
-      return;
-    }
-    this.respawn();
-  }
-
-  private respawn(): void {
-    this.worker.terminate();
-    this.failAll(new GeoshiftError('cancelled', 'cancelled'));
-    this.spawn();
+    this.current?.controller.abort();
   }
 
   dispose(): void {
-    this.worker.terminate();
-    this.failAll(new GeoshiftError('the worker was closed', 'internal'));
+    void this.started.then((gs) => gs.terminate(), () => undefined);
   }
 
-  private spawn(): void {
-    this.worker = new Worker(new URL('./geoshift.worker.ts', import.meta.url), { type: 'module' });
-    let settle!: { resolve: (info: WorkerInfo) => void; reject: (e: Error) => void };
-    this.started = new Promise<WorkerInfo>((resolve, reject) => (settle = { resolve, reject }));
-    // A start failure is reported to whoever awaits ready(); nobody else needs an unhandled rejection.
-    this.started.catch(() => undefined);
-    this.worker.onmessage = (event: MessageEvent) => {
-      const message: unknown = event.data;
-      if (!isResponse(message)) return;
-      if (message.type === 'ready') {
-        this.threaded = message.threaded;
-        settle.resolve({ threaded: message.threaded, threads: message.threads, ops: message.ops, presets: message.presets });
-      } else if (message.type === 'fatal') {
-        const error = new GeoshiftError(message.message, 'internal');
-        settle.reject(error);
-        this.failAll(error);
-      } else {
-        this.receive(message);
-      }
-    };
-    this.worker.onerror = (event) => {
-      const error = new GeoshiftError(`the worker failed: ${event.message || 'unknown error'}`, 'internal');
-      settle.reject(error);
-      this.failAll(error);
-    };
-    this.worker.postMessage({
-      type: 'init',
-      wasmBase: this.wasmBase,
-      build: this.build,
-      ...(this.heapMB ? { heapMB: this.heapMB } : {}),
-      ...(this.cancelFlag ? { cancelFlag: this.cancelFlag.buffer } : {}),
-    });
+  private async mesh(meshId: string): Promise<GeoshiftMesh> {
+    const kept = this.meshes.get(meshId);
+    if (!kept) throw new GeoshiftError(`mesh "${meshId}" was not loaded into the worker`, 'input');
+    return kept;
   }
 
-  private receive(message: Exclude<Response, { type: 'ready' | 'fatal' }>): void {
-    const pending = this.pending.get(message.id);
-    if (!pending) return;
-    if (message.type === 'progress') {
-      pending.onProgress?.(message.fraction, message.stage);
-      return;
-    }
-    this.pending.delete(message.id);
-    this.previewIds.delete(message.id);
-    if (message.id === this.runningId) this.runningId = 0;
-    if (message.type === 'error') pending.reject(new GeoshiftError(message.message, message.kind as ErrorKind));
-    else pending.resolve(message);
+  private begin(preview: boolean): AbortController {
+    const controller = new AbortController();
+    this.current = { controller, preview };
+    return controller;
   }
 
-  private async request(body: RequestBody, transfer: (r: Request) => ArrayBuffer[] = () => [], onProgress?: ProgressListener): Promise<Response> {
-    await this.started;
-    const id = this.nextId++;
-    const request = { ...body, id } as Request;
-    if (request.type === 'run' || request.type === 'preview') this.runningId = id;
-    if (request.type === 'preview') this.previewIds.add(id);
-    return new Promise<Response>((resolve, reject) => {
-      this.pending.set(id, onProgress ? { resolve, reject, onProgress } : { resolve, reject });
-      this.worker.postMessage(request, transfer(request));
-    });
-  }
-
-  private failAll(error: Error): void {
-    const all = [...this.pending.values()];
-    this.pending.clear();
-    this.previewIds.clear();
-    this.runningId = 0;
-    for (const p of all) p.reject(error);
+  private end(controller: AbortController): void {
+    if (this.current?.controller === controller) this.current = null;
   }
 }
 
-function copyMesh(mesh: MeshArrays): MeshArrays {
-  const copy: MeshArrays = { positions: mesh.positions.slice(), indices: mesh.indices.slice() };
-  if (mesh.colors) copy.colors = mesh.colors.slice();
-  if (mesh.normals) copy.normals = mesh.normals.slice();
-  if (mesh.scalars) copy.scalars = Object.fromEntries(Object.entries(mesh.scalars).map(([k, v]) => [k, v.slice()]));
-  return copy;
+/**
+ * The panel's parameters (presets.ts) carry the core's names, as the CLI's options and the core's
+ * presets do; the package names a few differently (filter's signal is its field). The core refuses
+ * a wrong name or value with a message naming it.
+ */
+function optionsOf(op: string, params: Record<string, unknown>): OpOptions[OpName] {
+  const renamed = coreNames[op as OpName] ?? {};
+  const packageName = new Map(Object.entries(renamed).map(([name, core]) => [core, name]));
+  return Object.fromEntries(Object.entries(params).map(([name, value]) => [packageName.get(name) ?? name, value])) as OpOptions[OpName];
 }
 
-function transferablesOf(request: Request): ArrayBuffer[] {
-  if (request.type !== 'load') return [];
-  return transferables([request.positions, request.indices, request.colors, request.normals, ...Object.values(request.scalars ?? {})]);
+function outputOf(update: MeshUpdate): RunOutput {
+  const output: RunOutput = { scalars: update.attributes, stats: update.stats };
+  if (update.positions) output.positions = update.positions;
+  if (update.colors) output.colors = update.colors;
+  return output;
 }

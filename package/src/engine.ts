@@ -1,8 +1,10 @@
 // What the worker does with each request, as a plain class over the module wrapper: no `self`, no
-// onmessage, so Node tests drive it with the Node build of the module (tests/wasm/worker.test.mjs).
+// onmessage, so Node tests drive it with the Node build of the module
+// (tests/wasm/worker-engine.test.mjs).
 
-import { GeoshiftError, type GeoshiftApi } from './wasm-api';
-import { transferables, type Request, type Response } from './protocol';
+import { GeoshiftError } from './errors.js';
+import type { ModuleApi } from './module-api.js';
+import { arraysOf, transferables, type JobOutput, type MeshArrays, type Request, type Response } from './protocol.js';
 
 export type Post = (message: Response, transfer: ArrayBuffer[]) => void;
 
@@ -23,7 +25,7 @@ export class Engine {
   private readonly now: () => number;
 
   constructor(
-    private readonly api: GeoshiftApi,
+    private readonly api: ModuleApi,
     private readonly post: Post,
     private readonly options: EngineOptions = {},
   ) {
@@ -43,34 +45,31 @@ export class Engine {
 
   private dispatch(request: Request): void {
     switch (request.type) {
-      case 'read':
-        this.post({ type: 'result', id: request.id, kind: 'read', info: this.api.readFile(request.fileName, request.bytes) }, []);
+      case 'read': {
+        const info = this.api.readFile(request.fileName, request.bytes, request.maxVertices, request.arrays);
+        this.post({ type: 'result', id: request.id, kind: 'read', info }, transferables(info.parts.flatMap((p) => [...arraysOf(p), p.transforms])));
         return;
+      }
       case 'load': {
         this.forget(request.meshId);
         const { handle, info } = this.api.load(request);
         this.handles.set(request.meshId, handle);
-        try {
-          for (const [name, values] of Object.entries(request.scalars ?? {})) this.api.setAttribute(handle, name, 1, values);
-        } catch (e) {
-          this.forget(request.meshId);
-          throw e;
-        }
         this.post({ type: 'result', id: request.id, kind: 'load', info }, []);
         return;
       }
       case 'run': {
-        const handle = this.handles.get(request.meshId);
-        if (handle === undefined) throw new GeoshiftError(`mesh "${request.meshId}" was not loaded into the worker`, 'input');
-        const output = this.api.run(handle, request.op, request.params, this.progressFor(request.id));
-        this.post({ type: 'result', id: request.id, kind: 'run', output }, transferables([output.positions, output.colors, ...Object.values(output.scalars)]));
+        const output = this.api.run(this.handleOf(request.meshId), request.op, request.params, this.progressFor(request.id));
+        this.post({ type: 'result', id: request.id, kind: 'run', output }, transferables(arraysOf(output)));
         return;
       }
       case 'preview': {
-        const handle = this.handles.get(request.meshId);
-        if (handle === undefined) throw new GeoshiftError(`mesh "${request.meshId}" was not loaded into the worker`, 'input');
-        const output = this.api.preview(handle, request.op, request.params, request.maxVertices, this.progressFor(request.id));
-        this.post({ type: 'result', id: request.id, kind: 'run', output }, transferables([output.positions, output.colors, ...Object.values(output.scalars)]));
+        const output = this.api.preview(this.handleOf(request.meshId), request.op, request.params, request.maxVertices, this.progressFor(request.id));
+        this.post({ type: 'result', id: request.id, kind: 'run', output }, transferables(arraysOf(output)));
+        return;
+      }
+      case 'job': {
+        const output = this.job(request, request.op, request.params, request.id);
+        this.post({ type: 'result', id: request.id, kind: 'job', output }, transferables(arraysOf(output)));
         return;
       }
       case 'free':
@@ -82,6 +81,23 @@ export class Engine {
         this.post({ type: 'result', id: request.id, kind: 'cancel' }, []);
         return;
     }
+  }
+
+  /** Load, run, forget. The input's positions (already this worker's copy) stand in when the op keeps them. */
+  private job(mesh: MeshArrays, op: string, params: Record<string, unknown>, id: number): JobOutput {
+    const { handle, info } = this.api.load(mesh);
+    try {
+      const output = this.api.run(handle, op, params, this.progressFor(id));
+      return { ...output, positions: output.positions ?? mesh.positions, report: info.report };
+    } finally {
+      this.api.free(handle);
+    }
+  }
+
+  private handleOf(meshId: string): number {
+    const handle = this.handles.get(meshId);
+    if (handle === undefined) throw new GeoshiftError(`mesh "${meshId}" was not loaded into the worker`, 'input');
+    return handle;
   }
 
   private forget(meshId: string): void {
