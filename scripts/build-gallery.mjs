@@ -102,6 +102,21 @@ function multiply(a, b) {
   return out;
 }
 
+/**
+ * The first `dim` components of every element of an accessor, as floats (normalized integers
+ * decoded): the vertex layout of the attribute whatever its type (VEC3 or VEC4, float or not).
+ */
+function rowsOf(accessor, dim) {
+  const out = new Float32Array(accessor.getCount() * dim);
+  const element = [];
+  for (let v = 0; v < accessor.getCount(); v++) {
+    accessor.getElement(v, element);
+    if (element.length < dim) throw new Error(`an attribute has ${element.length} components, ${dim} are needed`);
+    for (let k = 0; k < dim; k++) out[v * dim + k] = element[k];
+  }
+  return out;
+}
+
 /** A terrain from `geoshift terrain`, optionally simplified to about `targetVertices`. */
 async function terrainFromCli(input, extraArgs, targetVertices) {
   const tmp = mkdtempSync(join(tmpdir(), 'geoshift-gallery-'));
@@ -110,12 +125,13 @@ async function terrainFromCli(input, extraArgs, targetVertices) {
   const doc = await io.read(glb);
   const node = doc.getRoot().listNodes().find((n) => n.getMesh());
   const prim = node.getMesh().listPrimitives()[0];
-  let positions = Float32Array.from(prim.getAttribute('POSITION').getArray());
+  let positions = rowsOf(prim.getAttribute('POSITION'), 3);
   let indices = Uint32Array.from(prim.getIndices().getArray());
-  const attribute = (key) => prim.getAttribute(key) && Float32Array.from(prim.getAttribute(key).getArray());
-  let colors = attribute('COLOR_0');
+  // The CLI writes COLOR_0 as RGBA: taking its flat array as RGB rows shifted every color onto
+  // another vertex (issue 30). Rows of the first three components keep them on their own vertex.
+  let colors = prim.getAttribute('COLOR_0') && rowsOf(prim.getAttribute('COLOR_0'), 3);
   const scalars = {};
-  for (const key of prim.listSemantics()) if (key.startsWith('_')) scalars[key] = attribute(key);
+  for (const key of prim.listSemantics()) if (key.startsWith('_')) scalars[key] = rowsOf(prim.getAttribute(key), 1);
   const vertexCount = positions.length / 3;
   if (targetVertices && vertexCount > targetVertices) {
     // About two triangles per vertex on a terrain; the simplifier keeps a subset of the vertices,

@@ -36,7 +36,7 @@ test('every case opens in one click, with its preset, a hint and its name in the
   await openCase(page, 'colored-mesh');
   assert.equal(await page.getByTestId('view-mode').inputValue(), 'colors');
   await openCase(page, 'terrain');
-  assert.equal(await page.locator('[data-param="signal"] select').inputValue(), '_height_above_ground');
+  assert.equal((await page.evaluate(() => window.__geoshift.params())).params.signal, '_height_above_ground');
   assert.deepEqual(
     (await page.evaluate(() => window.__geoshift.scalar('_class')))[0].filter((v, i, a) => a.indexOf(v) === i).sort(),
     [1, 2],

@@ -60,9 +60,12 @@ test('a glTF terrain opens with +Y up and offers its heights before its classes'
   assert.equal(await page.evaluate(() => window.__geoshift.upAxis()), '+y');
   await page.getByTestId('preset-select').selectOption('terrain');
   const signal = page.locator('[data-param="signal"] select');
-  assert.equal(await signal.inputValue(), '_height_above_ground');
+  assert.equal((await page.evaluate(() => window.__geoshift.params())).params.signal, '_height_above_ground');
+  // In words, as the legend names them (issue 30: `_height_above_ground` beside "height above ground").
+  assert.equal(await signal.inputValue(), 'height above ground');
   const offered = await signal.locator('option').allTextContents();
-  assert.ok(offered.indexOf('_class') > offered.indexOf('_height'), `classes offered before heights: ${offered}`);
+  assert.ok(offered.every((o) => !o.includes('_')), `attribute names instead of words: ${offered}`);
+  assert.ok(offered.indexOf('class') > offered.indexOf('height (along the thinnest axis)'), `classes offered before heights: ${offered}`);
 });
 
 test('the snapshot is the canvas as drawn, with the legend and the split line', async () => {

@@ -73,11 +73,14 @@ export class LivePreview {
   readonly events: PreviewEvent[] = [];
 
   constructor(private readonly parts: LivePreviewParts) {
-    // Sliders only: a number being typed passes through values nobody asked to see.
     parts.panel.listen((change) => {
       if (change === 'slide') this.request();
       else if (change === 'release') this.commit();
-      else this.drop();
+      // A value typed and entered, a choice picked: a change like a drag and its release (issue 30:
+      // a typed value showed nothing until Run). The keystrokes before it are values nobody asked
+      // to see.
+      else if (change === 'commit') this.settle();
+      else if (change === 'preset') this.drop();
     });
     parts.filters.previewGuard = (reason) => {
       this.drop();
@@ -118,6 +121,15 @@ export class LivePreview {
     }
     this.running = this.work().finally(() => {
       this.running = null;
+    });
+  }
+
+  /** A value set in one step: its preview first, then the full run. */
+  private settle(): void {
+    this.request();
+    const ticket = this.ticket;
+    void (this.running ?? Promise.resolve()).then(() => {
+      if (ticket === this.ticket) this.commit();
     });
   }
 

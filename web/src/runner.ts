@@ -15,8 +15,8 @@ export interface RunReport {
   computeMs: number;
   vertices: number;
   meshes: number;
-  /** Iterations or passes the op reports, when it does. */
-  iterations: number | null;
+  /** Iterations, mean shift steps per vertex or passes the op reports, when it does. */
+  iterations: { kind: 'iterations' | 'meanIterations' | 'passes'; value: number } | null;
   /** Per-vertex RMS distance to the positions before noise was added, and that of the input. */
   error: { rms: number; inputRms: number; diagonal: number } | null;
   scalars: string[];
@@ -27,7 +27,8 @@ export interface ProgressEvent {
   /** Overall, over all meshes. */
   fraction: number;
   stage: string;
-  stageFraction: number;
+  /** The stage's own fraction, or null for a step that cannot tell (sending the mesh). */
+  stageFraction: number | null;
   /** performance.now() when the page received it. */
   at: number;
 }
@@ -48,10 +49,10 @@ export function heightOf(positions: Float32Array): Float32Array {
   return Float32Array.from({ length: positions.length / 3 }, (_, v) => positions[3 * v + up]!);
 }
 
-function iterationsOf(stats: RunOutput['stats'][]): number | null {
-  for (const key of ['iterations', 'meanIterations', 'passes']) {
-    const values = stats.map((s) => s[key]).filter((v): v is number => typeof v === 'number');
-    if (values.length) return Math.max(...values);
+function iterationsOf(stats: RunOutput['stats'][]): RunReport['iterations'] {
+  for (const kind of ['iterations', 'meanIterations', 'passes'] as const) {
+    const values = stats.map((s) => s[kind]).filter((v): v is number => typeof v === 'number');
+    if (values.length) return { kind, value: Math.max(...values) };
   }
   return null;
 }
@@ -70,7 +71,7 @@ export async function runOnMeshes(
   const inputs: Float32Array[] = [];
   for (const [i, state] of states.entries()) {
     const prefix = states.length > 1 ? `mesh ${i + 1}/${states.length}: ` : '';
-    onProgress({ fraction: i / states.length, stage: `${prefix}sending the mesh`, stageFraction: 0, at: performance.now() });
+    onProgress({ fraction: i / states.length, stage: `${prefix}preparing the mesh`, stageFraction: null, at: performance.now() });
     const stopIfCancelled = () => {
       if (cancelled()) throw new GeoshiftError('cancelled', 'cancelled');
     };

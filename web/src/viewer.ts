@@ -5,6 +5,9 @@
 import {
   BufferGeometry,
   Color,
+  Mesh as ThreeMesh,
+  MeshBasicMaterial,
+  SphereGeometry,
   DirectionalLight,
   HemisphereLight,
   PerspectiveCamera,
@@ -40,7 +43,14 @@ export interface Comparison {
 // The default view looks at the model from the front, a little from above and the right, in a
 // frame where +Y is up; other up axes rotate it (for +Z up the front is -Y, as Z-up tools have it).
 const VIEW_DIRECTION = new Vector3(0.35, 0.3, 1).normalize();
+// A flat model (a terrain, a relief) is seen from higher up, so that its relief shows instead of a
+// thin strip at a grazing angle (issue 30): 50° above the horizon.
+const FLAT_VIEW_DIRECTION = new Vector3(0.35 * Math.cos((50 * Math.PI) / 180), Math.sin((50 * Math.PI) / 180), Math.cos((50 * Math.PI) / 180)).normalize();
 const CAMERA_UP = new Vector3(0, 1, 0);
+/** Share of the narrower side of the view the framed model spans. */
+const FILL = 0.9;
+/** Vertices looked at when framing (every k-th beyond this many). */
+const FRAMING_SAMPLES = 20_000;
 
 export class Viewer {
   readonly canvas: HTMLCanvasElement;
@@ -56,6 +66,15 @@ export class Viewer {
   private comparison: Comparison = { before: new Map(), showBefore: false, split: null };
   private frameRequested = false;
   private frameWaiters: Array<() => void> = [];
+  /** The model's bounding sphere (world), for the clipping planes; null: to be measured again. */
+  private modelSphere: Sphere | null = null;
+  /** The camera is where fitToView put it (no drag since): a resize frames the model again. */
+  private framed = false;
+  /** A point marked on the model (the source of a geodesic distance), drawn over everything. */
+  private readonly marker = new ThreeMesh(
+    new SphereGeometry(1, 16, 12),
+    new MeshBasicMaterial({ color: 0xff3b6b, depthTest: false, transparent: true, opacity: 0.95 }),
+  );
 
   /** Throws if WebGL is unavailable; the caller reports it. */
   constructor(private readonly container: HTMLElement) {
@@ -77,6 +96,9 @@ export class Viewer {
     this.scene.add(this.camera, this.hemisphere);
 
     this.controls = this.createControls();
+    this.marker.visible = false;
+    this.marker.renderOrder = 10;
+    this.scene.add(this.marker);
 
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
@@ -89,10 +111,35 @@ export class Viewer {
       for (const mesh of this.model.meshes) mesh.geometry.dispose();
     }
     this.comparison = { before: new Map(), showBefore: false, split: null };
+    this.marker.visible = false;
+    this.modelSphere = null;
     this.model = model;
     this.scene.add(model.root);
     this.applyMode();
     this.fitToView();
+  }
+
+  /**
+   * Marks a vertex of a mesh on screen (world position, a dot 1.5% of the model's size), or
+   * removes the mark (null).
+   */
+  setMarker(at: { mesh: Mesh; vertex: number } | null): void {
+    this.marker.visible = false;
+    if (at && this.model) {
+      const position = at.mesh.geometry.getAttribute('position');
+      if (at.vertex >= 0 && at.vertex < position.count) {
+        at.mesh.updateWorldMatrix(true, false);
+        this.marker.position.fromBufferAttribute(position, at.vertex).applyMatrix4(at.mesh.matrixWorld);
+        this.marker.scale.setScalar(0.015 * this.boundingSphere(this.model).radius);
+        this.marker.visible = true;
+      }
+    }
+    this.requestRender();
+  }
+
+  /** Where the marker is (world), or null when none is shown. */
+  markerPosition(): number[] | null {
+    return this.marker.visible ? this.marker.position.toArray() : null;
   }
 
   setViewMode(mode: ViewMode): void {
@@ -102,6 +149,8 @@ export class Viewer {
 
   /** Re-picks materials after attributes were added or removed (new colors, a scalar field). */
   geometryChanged(): void {
+    // Positions may have moved (a denoised mesh, noise added).
+    this.modelSphere = null;
     this.applyMode();
   }
 
@@ -136,30 +185,99 @@ export class Viewer {
     return read(this.canvas);
   }
 
-  /** Frames the whole model: centred, filling the view, seen from the default direction. */
+  /**
+   * Frames the whole model: seen from the default direction (from higher up for a flat model),
+   * centred, its vertices spanning FILL of the narrower side of the view.
+   */
   fitToView(): void {
     if (!this.model) return;
     const sphere = this.boundingSphere(this.model);
     const radius = Math.max(sphere.radius, 1e-6);
-    const halfVertical = (this.camera.fov * Math.PI) / 360;
-    const halfHorizontal = Math.atan(Math.tan(halfVertical) * this.camera.aspect);
-    // Distance at which the sphere touches the narrower side of the view, plus a small margin.
-    const distance = (radius / Math.sin(Math.min(halfVertical, halfHorizontal))) * 1.05;
+    const points = this.framingPoints(this.model);
+    const toUp = new Quaternion().setFromUnitVectors(CAMERA_UP, this.up);
+    const direction = (this.isFlat(points) ? FLAT_VIEW_DIRECTION : VIEW_DIRECTION).clone().applyQuaternion(toUp);
     // Motion left over from a drag (damping) would carry the camera away from the new framing.
     this.controls.enableDamping = false;
     this.controls.update();
     this.controls.enableDamping = true;
-    this.camera.near = radius / 1000;
-    this.camera.far = distance + radius * 100;
+    const { target, distance } = this.tightFrame(points, sphere.center, direction);
     this.camera.up.copy(this.up);
-    const direction = VIEW_DIRECTION.clone().applyQuaternion(new Quaternion().setFromUnitVectors(CAMERA_UP, this.up));
-    this.camera.position.copy(sphere.center).addScaledVector(direction, distance);
+    this.camera.position.copy(target).addScaledVector(direction, distance);
     this.camera.updateProjectionMatrix();
-    this.controls.target.copy(sphere.center);
+    this.controls.target.copy(target);
     this.controls.minDistance = radius * 0.01;
     this.controls.maxDistance = radius * 50;
     this.controls.update();
+    this.framed = true;
     this.requestRender();
+  }
+
+  /** World positions of (a sample of) the model's vertices. */
+  private framingPoints(model: ViewerModel): Vector3[] {
+    model.root.updateMatrixWorld(true);
+    let total = 0;
+    for (const mesh of model.meshes) total += mesh.geometry.getAttribute('position').count;
+    const stride = Math.max(1, Math.ceil(total / FRAMING_SAMPLES));
+    const points: Vector3[] = [];
+    for (const mesh of model.meshes) {
+      const position = mesh.geometry.getAttribute('position');
+      for (let i = 0; i < position.count; i += stride) points.push(new Vector3().fromBufferAttribute(position, i).applyMatrix4(mesh.matrixWorld));
+    }
+    return points;
+  }
+
+  /** Thin along the up axis compared with both other sides (a terrain, a relief, a plate). */
+  private isFlat(points: Vector3[]): boolean {
+    const toFrame = new Quaternion().setFromUnitVectors(this.up, CAMERA_UP);
+    const min = new Vector3(Infinity, Infinity, Infinity);
+    const max = new Vector3(-Infinity, -Infinity, -Infinity);
+    const p = new Vector3();
+    for (const point of points) {
+      p.copy(point).applyQuaternion(toFrame);
+      min.min(p);
+      max.max(p);
+    }
+    const size = max.sub(min);
+    return size.y < 0.3 * Math.min(size.x, size.z);
+  }
+
+  /**
+   * Where to look from `direction` so that every point is in view with the given fill: the camera
+   * distance at which the widest point touches the narrower side, then the target moved so that
+   * the points' projection is centred.
+   */
+  private tightFrame(points: Vector3[], centre: Vector3, direction: Vector3): { target: Vector3; distance: number } {
+    const forward = direction.clone().negate();
+    const right = new Vector3().crossVectors(forward, this.up).normalize();
+    const up = new Vector3().crossVectors(right, forward).normalize();
+    const tanV = Math.tan((this.camera.fov * Math.PI) / 360) * FILL;
+    const tanH = tanV * this.camera.aspect;
+    const target = centre.clone();
+    let distance = 0;
+    const d = new Vector3();
+    for (let pass = 0; pass < 2; pass++) {
+      // Camera distance: each point p, at depth D - p·direction, needs |p·right| <= tanH·depth and
+      // |p·up| <= tanV·depth.
+      distance = 0;
+      for (const point of points) {
+        d.subVectors(point, target);
+        const along = d.dot(direction);
+        distance = Math.max(distance, along + Math.abs(d.dot(right)) / tanH, along + Math.abs(d.dot(up)) / tanV);
+      }
+      if (pass === 1 || points.length === 0) break;
+      // Centre the projection: shift the target by the mid-point of the extreme view angles.
+      let loX = Infinity, hiX = -Infinity, loY = Infinity, hiY = -Infinity;
+      for (const point of points) {
+        d.subVectors(point, target);
+        const depth = Math.max(distance - d.dot(direction), 1e-9);
+        loX = Math.min(loX, d.dot(right) / depth);
+        hiX = Math.max(hiX, d.dot(right) / depth);
+        loY = Math.min(loY, d.dot(up) / depth);
+        hiY = Math.max(hiY, d.dot(up) / depth);
+      }
+      target.addScaledVector(right, ((loX + hiX) / 2) * distance).addScaledVector(up, ((loY + hiY) / 2) * distance);
+    }
+    return { target, distance: Math.max(distance, 1e-6) };
   }
 
   /** The mesh and the nearest corner of the triangle under a point of the canvas, if any. */
@@ -203,6 +321,7 @@ export class Viewer {
     // which requests the next frame until the motion settles.
     this.controls.update();
     this.updateLights();
+    this.updateClipping();
     const { before, showBefore, split } = this.comparison;
     if (before.size > 0 && split !== null) {
       const width = Math.max(1, this.container.clientWidth);
@@ -248,8 +367,36 @@ export class Viewer {
     const controls = new OrbitControls(this.camera, this.canvas);
     controls.enableDamping = true;
     controls.enableRotate = controls.enablePan = controls.enableZoom = true;
+    // The wheel zooms toward the point under the pointer, so that a closer look at a detail stays
+    // outside the surface instead of diving through it toward the model's centre.
+    controls.zoomToCursor = true;
     controls.addEventListener('change', () => this.requestRender());
+    // The person moved the view: a resize keeps their view instead of framing the model again.
+    controls.addEventListener('start', () => {
+      this.framed = false;
+    });
     return controls;
+  }
+
+  /**
+   * Near and far planes around the model as seen from where the camera is now. With fixed planes
+   * (radius / 1000 to 100 radii beyond) the depth buffer resolved ~1/2000 of the model's size,
+   * coarser than the gap between the two sides of a tight fold of a sculpted mesh: the far side
+   * showed through as dotted hairline cracks along every fold (issue 30). Here the range is about
+   * the model's depth, a few hundred times finer.
+   */
+  private updateClipping(): void {
+    if (!this.model) return;
+    this.modelSphere ??= this.boundingSphere(this.model);
+    const { center, radius } = this.modelSphere;
+    const distance = this.camera.position.distanceTo(center);
+    const near = Math.max(distance - 1.05 * radius, distance / 500, radius / 5000);
+    const far = Math.max(distance + 1.05 * radius, near * 2);
+    if (near !== this.camera.near || far !== this.camera.far) {
+      this.camera.near = near;
+      this.camera.far = far;
+      this.camera.updateProjectionMatrix();
+    }
   }
 
   private updateLights(): void {
@@ -285,6 +432,8 @@ export class Viewer {
     this.renderer.setSize(width, height, false);
     this.camera.aspect = width / height;
     this.camera.updateProjectionMatrix();
+    // The phone's sheet opening or closing resizes the view: the mesh is framed in what is left.
+    if (this.framed) this.fitToView();
     this.requestRender();
   }
 }
