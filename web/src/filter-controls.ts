@@ -54,6 +54,8 @@ export class FilterControls {
   previewGuard: (reason: 'revert' | 'export' | 'model') => void = () => undefined;
   /** Told when a run finished (null: failed or cancelled). */
   onFinished: (report: RunReport | null) => void = () => undefined;
+  /** Told when a run starts (the live preview stops an analysis made ahead of time). */
+  beforeRun: () => void = () => undefined;
 
   constructor(
     private readonly el: FilterElements,
@@ -151,6 +153,7 @@ export class FilterControls {
 
   run(preset: Preset, params: Record<string, unknown>): Promise<void> {
     if (this.busy || this.states.length === 0) return this.current;
+    this.beforeRun();
     this.busy = true;
     this.cancelRequested = false;
     this.log = { report: null, error: null, progressEvents: [] };

@@ -18,17 +18,61 @@ import type { WorkerClient } from './worker/client';
 import type { RunOutput } from './worker/protocol';
 
 /**
- * Sizes of the coarse level, largest first. A preview starts at the first; one slower than
- * TARGET_MS moves its preset to a smaller level (the mean shift with a wide neighbourhood costs
- * ~80 µs a vertex on 2 cores, Taubin ~0.5 µs: bench/wasm/preview.mjs).
+ * Sizes of the coarse level, largest first. A preset's first preview takes the largest that its
+ * cost guess (costPerVertex) fits in the budget and that holds at most MAX_SHARE of the mesh; one
+ * slower than TARGET_MS moves its preset to a smaller level (adapt).
  */
-export const PREVIEW_SIZES = [25_000, 12_000, 6_000, 3_000];
+export const PREVIEW_SIZES = [25_000, 12_000, 6_000, 3_000, 1_500];
 const TARGET_MS = 200;
+/** Share of TARGET_MS the op itself may take; the rest brings the result back and draws it. */
+const OP_SHARE = 0.6;
+/**
+ * A preview's level holds at most this share of the mesh. The first preview used to run on the
+ * whole mesh (a level of 25,000 vertices for a 13,971-vertex mesh), a full run in disguise that
+ * showed nothing for seconds (issue 30).
+ */
+const MAX_SHARE = 1 / 3;
+/**
+ * Meshes up to this size get their coarse level analysed when they are opened, so that the first
+ * drag only runs the op (the analysis costs ~15 µs a vertex, bench/wasm/preview.mjs).
+ */
+const WARM_UP_VERTICES = 200_000;
 
 /** Ops whose parameters mean the same on a coarser mesh (not a vertex index, as geodesic's source). */
 const PREVIEWABLE = new Set(['filter', 'denoise', 'smooth', 'curvature']);
 
-export type ResultKind = 'none' | 'preview' | 'full';
+// Measured with bench/wasm/preview.mjs (threaded build, 2 cores): see costPerVertex.
+const FILTER_US_PER_AREA = 0.36;
+const DENOISE_US = 60;
+const SMOOTH_US_PER_ITERATION = 0.05;
+const OTHER_US = 1;
+
+/**
+ * What an op costs per vertex of the coarse level (µs, threaded build on 2 cores), before a preview
+ * has measured it: the mean shift grows with the neighbourhood's area (r² in AEL) and the passes,
+ * and a hybrid op (levels > 0) filters ~0.7^L of the level's vertices.
+ * Figures: bench/wasm/preview.mjs, docs/performance.md#live-preview.
+ */
+export function costPerVertex(op: string, params: Record<string, unknown>): number {
+  const number = (key: string, fallback: number) => (typeof params[key] === 'number' && Number.isFinite(params[key]) ? (params[key] as number) : fallback);
+  const coarser = 0.7 ** Math.max(0, number('levels', 0));
+  switch (op) {
+    case 'filter': {
+      const hs = number('hs', 3);
+      const radius = number('radius', 0) > 0 ? number('radius', 0) : 3 * hs;
+      const passes = params.mode === 'bms' ? Math.max(1, number('passes', 10)) : 1;
+      return FILTER_US_PER_AREA * radius * radius * passes * coarser;
+    }
+    case 'denoise':
+      return DENOISE_US * coarser;
+    case 'smooth':
+      return SMOOTH_US_PER_ITERATION * Math.max(1, number('iterations', 10));
+    default:
+      return OTHER_US;
+  }
+}
+
+export type ResultKind = 'none' | 'computing' | 'preview' | 'full';
 
 export interface PreviewEvent {
   kind: 'preview' | 'full';
@@ -62,6 +106,8 @@ export class LivePreview {
   private ticket = 0;
   private wanted: Wanted | null = null;
   private running: Promise<void> | null = null;
+  /** The analysis of the coarse level made ahead of the first drag (warmUp), while it runs. */
+  private warming: Promise<void> | null = null;
   /** Worker mesh ids of the preview sessions, with the attributes they were loaded from. */
   private readonly loaded = new Map<string, unknown[]>();
   private loadedStates: MeshState[] = [];
@@ -80,14 +126,25 @@ export class LivePreview {
       // a typed value showed nothing until Run). The keystrokes before it are values nobody asked
       // to see.
       else if (change === 'commit') this.settle();
-      else if (change === 'preset') this.drop();
+      else if (change === 'preset') {
+        this.drop();
+        this.warmUp();
+      }
     });
     parts.filters.previewGuard = (reason) => {
       this.drop();
-      if (reason === 'model') this.sizeIndex.clear();
+      if (reason === 'model') {
+        this.sizeIndex.clear();
+        // After setModel has the new meshes in place.
+        setTimeout(() => this.warmUp(), 0);
+      }
       // After a revert or with a new file, no result is on screen any more.
       if (reason !== 'export') this.settled = { kind: 'none', text: '' };
       this.setKind(this.settled.kind, this.settled.text);
+    };
+    // A run waits for the worker: an analysis ahead of time gives way to it (threaded build).
+    parts.filters.beforeRun = () => {
+      if (this.warming) parts.client.stopPreview();
     };
     parts.filters.onFinished = (report) => {
       if (!report) return;
@@ -103,7 +160,48 @@ export class LivePreview {
 
   /** Resolves when no preview is being computed. */
   async idle(): Promise<void> {
-    while (this.running) await this.running;
+    while (this.running || this.warming) await (this.running ?? this.warming);
+  }
+
+  /**
+   * Analyses the coarse level the current preset's previews will use, while nothing else runs, so
+   * that the first drag only runs the op on it (the analysis is kept with the worker's preview
+   * session, wasm/preview.cpp). Meshes above WARM_UP_VERTICES wait for the first drag.
+   */
+  private warmUp(): void {
+    const preset = this.parts.panel.preset();
+    const states = this.parts.filters.meshStates();
+    if (this.warming || this.running || !this.active(preset) || this.parts.filters.isBusy()) return;
+    if (vertexCount(states) > WARM_UP_VERTICES) return;
+    const params = this.parts.panel.params();
+    const size = this.levelSize(preset, params);
+    this.warming = (async () => {
+      for (const state of states) {
+        if (states !== this.parts.filters.meshStates() || this.parts.filters.isBusy()) return;
+        await this.ensureLoaded(state, params);
+        // Taubin with no step: the analysis and the way back, nothing else.
+        await this.parts.client.preview(previewId(state), 'smooth', { iterations: 0 }, size);
+      }
+    })()
+      .catch(() => undefined)
+      .finally(() => {
+        this.warming = null;
+        // A drag that came meanwhile waited for the analysis.
+        if (this.wanted && !this.running) this.start();
+      });
+  }
+
+  /** The coarse level's size for a preset: measured by its last preview, else guessed. */
+  private levelSize(preset: Preset, params: Record<string, unknown>): number {
+    let index = this.sizeIndex.get(preset.id);
+    if (index === undefined) {
+      const budget = (OP_SHARE * TARGET_MS * 1000) / costPerVertex(preset.op, params);
+      const cap = MAX_SHARE * vertexCount(this.parts.filters.meshStates());
+      index = PREVIEW_SIZES.findIndex((size) => size <= budget && size <= cap);
+      if (index < 0) index = PREVIEW_SIZES.length - 1;
+      this.sizeIndex.set(preset.id, index);
+    }
+    return PREVIEW_SIZES[index]!;
   }
 
   private active(preset: Preset): boolean {
@@ -115,10 +213,17 @@ export class LivePreview {
     const preset = this.parts.panel.preset();
     if (!this.active(preset)) return;
     this.wanted = { preset, params: this.parts.panel.params(), ticket: ++this.ticket };
+    // Said where the person looks (the view's status) until the first preview of this change shows.
+    if (this.parts.kind.dataset.kind !== 'preview') this.setKind('computing', 'computing preview…');
+    if (this.warming) return;
     if (this.running) {
       this.parts.client.stopPreview();
       return;
     }
+    this.start();
+  }
+
+  private start(): void {
     this.running = this.work().finally(() => {
       this.running = null;
     });
@@ -141,7 +246,7 @@ export class LivePreview {
     this.ticket++;
     if (this.running) this.parts.client.stopPreview();
     // After the preview in flight (the worker runs one request at a time anyway).
-    void (this.running ?? Promise.resolve()).then(() => this.parts.filters.run(preset, this.parts.panel.params()));
+    void this.idle().then(() => this.parts.filters.run(preset, this.parts.panel.params()));
   }
 
   private async work(): Promise<void> {
@@ -156,7 +261,7 @@ export class LivePreview {
         const outputs: RunOutput[] = [];
         for (const state of states) {
           await this.ensureLoaded(state, job.params);
-          outputs.push(await this.parts.client.preview(previewId(state), job.preset.op, job.params, PREVIEW_SIZES[this.sizeIndex.get(job.preset.id) ?? 0]!));
+          outputs.push(await this.parts.client.preview(previewId(state), job.preset.op, job.params, this.levelSize(job.preset, job.params)));
           if (job.ticket !== this.ticket) break;
         }
         if (job.ticket !== this.ticket || states !== this.parts.filters.meshStates() || this.parts.filters.isBusy()) continue;
@@ -167,6 +272,8 @@ export class LivePreview {
         // A stopped preview is superseded by a newer one; a failing one says why where a run would.
         if (job.ticket === this.ticket && !(error instanceof Error && /cancel/i.test(error.message))) {
           this.setKind('none', `preview failed: ${error instanceof Error ? error.message : String(error)}`);
+        } else if (job.ticket === this.ticket && this.parts.kind.dataset.kind === 'computing') {
+          this.setKind(this.settled.kind, this.settled.text);
         }
       }
     }
@@ -229,7 +336,7 @@ export class LivePreview {
     const fixedMs = Math.max(ms - sum('analysisMs') - opMs, 0);
     const perVertex = opMs / vertices;
     const budget = Math.max(TARGET_MS - fixedMs, TARGET_MS / 2);
-    const index = this.sizeIndex.get(presetId) ?? 0;
+    const index = this.sizeIndex.get(presetId) ?? PREVIEW_SIZES.length - 1;
     if (PREVIEW_SIZES[index]! * perVertex <= budget) return;
     const fits = PREVIEW_SIZES.findIndex((size) => size * perVertex <= budget);
     this.sizeIndex.set(presetId, fits < 0 ? PREVIEW_SIZES.length - 1 : Math.max(fits, index));
@@ -243,6 +350,7 @@ export class LivePreview {
   drop(): void {
     this.wanted = null;
     this.ticket++;
+    if (this.parts.kind.dataset.kind === 'computing') this.setKind(this.settled.kind, this.settled.text);
     if (!this.hasPreview()) return;
     const states = this.parts.filters.meshStates();
     for (const state of states) dropPreview(state);
@@ -255,6 +363,10 @@ export class LivePreview {
     this.parts.kind.dataset.kind = kind;
     this.parts.kind.textContent = text || (kind === 'none' ? 'Nothing computed yet' : '');
   }
+}
+
+function vertexCount(states: MeshState[]): number {
+  return states.reduce((t, s) => t + baseGeometry(s).getAttribute('position').count, 0);
 }
 
 function previewId(state: MeshState): string {

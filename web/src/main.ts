@@ -23,6 +23,9 @@ import { ViewModeControl } from './view-mode-control';
 import { Viewer } from './viewer';
 import { WorkerClient, type WorkerInfo } from './worker/client';
 
+/** The preset the start page opens with (a link's preset wins). */
+const START_PRESET = 'curvature';
+
 const SAMPLE = { url: `${import.meta.env.BASE_URL}samples/ChineseDragon-10kv.off`, name: 'ChineseDragon-10kv.off' };
 
 function element<T extends HTMLElement>(testId: string, type: new () => T): T {
@@ -124,7 +127,7 @@ function createParts(status: StatusLine, viewer: Viewer): Parts {
     kind: element('result-kind', HTMLElement),
     enabled: element('live-preview', HTMLInputElement),
   });
-  const upAxis = new UpAxisControl(element('up-axis-select', HTMLSelectElement), (axis) => viewer.setUp(axisVector(axis)));
+  const upAxis = new UpAxisControl(element('up-axis-select', HTMLSelectElement), (axis, front) => viewer.setUp(axisVector(axis), front));
   const app = new App(
     viewer,
     status,
@@ -163,18 +166,20 @@ function connectWorker({ client, panel, filters, status }: Parts): Promise<Worke
 }
 
 /** The gallery, the URL state, and the three ways a mesh gets on screen. */
-function createDemo({ app, panel, filters, upAxis, status }: Parts): Demo {
+function createDemo({ app, panel, filters, upAxis, status, viewMode, scalars }: Parts): Demo {
   let sampleShown = false;
   const gallery: Gallery = new Gallery(element('gallery', HTMLElement), element('gallery-hint', HTMLElement), {
     app,
     panel,
     filters,
+    viewMode,
+    scalars,
     base: `${import.meta.env.BASE_URL}gallery/`,
     onOpened: () => hashSync.write(true),
     onError: (message) => status.error(message),
   });
   const openSample = async () => {
-    gallery.leave();
+    gallery.leave(true);
     await app.openUrl(SAMPLE.url, SAMPLE.name);
     sampleShown = app.stats()?.file === SAMPLE.name;
   };
@@ -226,9 +231,12 @@ function installControls({ app, viewer, panel, status, snapshot }: Parts, demo: 
  * The first mesh: a link to a gallery case opens the case (with the link's settings); any other
  * page starts with the sample. Resolves when it is on screen.
  */
-function openFirstMesh({ app }: Parts, demo: Demo, workerReady: Promise<WorkerInfo>): Promise<void> {
-  const linkedCase = decodeState(location.hash).caseId;
-  return (linkedCase ? Promise.resolve() : demo.openSample())
+function openFirstMesh({ app, panel }: Parts, demo: Demo, workerReady: Promise<WorkerInfo>): Promise<void> {
+  const linked = decodeState(location.hash);
+  // The sample is a clean mesh: its curvature shows at once what the app does; Denoise would
+  // change nothing visible (issue 30).
+  if (!linked.preset && !linked.caseId) panel.restore(START_PRESET, {});
+  return (linked.caseId ? Promise.resolve() : demo.openSample())
     // The presets' availability is known once the worker is up; a link may name any preset.
     .then(() => workerReady.catch(() => undefined))
     .then(() => demo.hashSync.restore(location.hash))

@@ -1,6 +1,7 @@
 // Runs an op on every mesh of the open file, one after another, through the worker. Results are
 // applied only when every mesh succeeded, so a failure or a cancel leaves the model as it was.
 
+import { BufferAttribute } from 'three';
 import { applyOutput, baseGeometry, dropPreview, meshArrays, rmsError, snapshot, type MeshState } from './model';
 import type { Preset } from './presets';
 import type { RunOutput } from './worker/protocol';
@@ -69,6 +70,8 @@ export async function runOnMeshes(
   const started = performance.now();
   const outputs: RunOutput[] = [];
   const inputs: Float32Array[] = [];
+  /** Per mesh, the raw field a filter of a computed signal started from (for "before"). */
+  const raws: Array<Record<string, Float32Array>> = [];
   for (const [i, state] of states.entries()) {
     const prefix = states.length > 1 ? `mesh ${i + 1}/${states.length}: ` : '';
     onProgress({ fraction: i / states.length, stage: `${prefix}preparing the mesh`, stageFraction: null, at: performance.now() });
@@ -87,6 +90,7 @@ export async function runOnMeshes(
         onProgress({ fraction: (i + fraction) / states.length, stage: `${prefix}${stage}`, stageFraction: fraction, at: performance.now() }),
       ),
     );
+    raws.push(await rawField(client, state.id, preset, params));
   }
   // Every mesh succeeded: apply all at once.
   let errorSum = 0;
@@ -97,6 +101,8 @@ export async function runOnMeshes(
     const output = outputs[i]!;
     dropPreview(state);
     snapshot(state);
+    // "Before" shows the field the filter started from, so that the split view compares two fields.
+    for (const [name, values] of Object.entries(raws[i]!)) state.before?.setAttribute(name.toLowerCase(), new BufferAttribute(values, 1));
     if (preset.op === 'noise' && output.positions && !state.preNoise) state.preNoise = inputs[i]!;
     applyOutput(state, output, preset.replacesColors === true);
     if (preset.op !== 'noise' && state.preNoise && output.positions && state.preNoise.length === output.positions.length) {
@@ -122,6 +128,18 @@ export async function runOnMeshes(
     scalars: [...new Set(outputs.flatMap((o) => Object.keys(o.scalars).map((n) => n.toLowerCase())))],
     stats,
   };
+}
+
+/**
+ * A filter of a signal the op computes from the shape (the absolute curvature) leaves no field in
+ * the mesh before it: the raw field is computed here by the `curvature` op on the same mesh (the
+ * filter left the worker's copy unmoved), the same values the filter started from
+ * (filter_request.cpp). Other runs: nothing.
+ */
+async function rawField(client: WorkerClient, meshId: string, preset: Preset, params: Record<string, unknown>): Promise<Record<string, Float32Array>> {
+  if (preset.op !== 'filter' || params.signal !== 'curvature' || params.filterGeometry === true) return {};
+  const raw = await client.run(meshId, 'curvature', { kind: 'abs' }, () => undefined);
+  return raw.scalars;
 }
 
 /** Plain words for a failed run. */

@@ -58,6 +58,8 @@ export class Viewer {
   private readonly scene = new Scene();
   private readonly camera = new PerspectiveCamera(40, 1, 0.01, 100);
   private controls: OrbitControls;
+  /** The side the default view looks from: 1 the default one, −1 the opposite (setUp). */
+  private front: 1 | -1 = 1;
   /** World direction of "up": the camera orbits about it and Reset view stands the model on it. */
   private readonly up = new Vector3(0, 1, 0);
   private readonly hemisphere = new HemisphereLight(0xffffff, 0x3a3d44, 1.1);
@@ -159,8 +161,12 @@ export class Viewer {
     this.requestRender();
   }
 
-  /** Sets the up direction (a unit axis) and frames the model again standing on it. */
-  setUp(up: Vector3): void {
+  /**
+   * Sets the up direction (a unit axis) and frames the model again standing on it, seen from the
+   * default side (front 1) or the opposite one (−1, up-axis.ts guesses which side is the front).
+   */
+  setUp(up: Vector3, front: 1 | -1 = 1): void {
+    this.front = front;
     if (!up.equals(this.up)) {
       this.up.copy(up).normalize();
       // OrbitControls reads camera.up once, when it is created, so a new up needs new controls.
@@ -196,6 +202,7 @@ export class Viewer {
     const points = this.framingPoints(this.model);
     const toUp = new Quaternion().setFromUnitVectors(CAMERA_UP, this.up);
     const direction = (this.isFlat(points) ? FLAT_VIEW_DIRECTION : VIEW_DIRECTION).clone().applyQuaternion(toUp);
+    if (this.front < 0) direction.applyAxisAngle(this.up, Math.PI);
     // Motion left over from a drag (damping) would carry the camera away from the new framing.
     this.controls.enableDamping = false;
     this.controls.update();
