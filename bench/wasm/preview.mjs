@@ -1,5 +1,5 @@
 // Latency of the live preview (the module's preview(): an op on a coarse wavelet level of at most
-// 25,000, 6,000 or 3,000 vertices, brought back to every vertex) per mesh size, in Chromium with
+// 25,000 ... 1,500 vertices, brought back to every vertex) per mesh size, in Chromium with
 // the threaded web flavour (a module worker of a cross-origin-isolated page, as the app runs it)
 // and in Node with the single-threaded flavour. For each size: the first call (which analyses the mesh once), then
 // the median of the following calls (the analysis reused), as a slider moving would make them.
@@ -8,7 +8,9 @@
 //   node bench/wasm/preview.mjs [--sizes 30000,100000,300000,1000000] [--levels 25000,6000,3000] [--repetitions 5]
 //
 // The mesh: a terrain-like grid (hills and noise) with its height as the scalar _H. The jobs: the
-// Terrain preset's filter of _H (mean shift, h_s 5, h_r 5, r 15) and Taubin smoothing (10 steps).
+// Terrain preset's filter of _H (mean shift, h_s 5, h_r 5, r 15), the Filter curvature preset (two
+// wavelet levels), the Denoise preset and Taubin smoothing (10 steps). The web app's first-preview
+// level comes from these (web/src/live-preview.ts, costPerVertex).
 import fs from 'node:fs';
 import http from 'node:http';
 import os from 'node:os';
@@ -24,7 +26,7 @@ const option = (name, fallback) => {
 const sizes = option('--sizes', '30000,100000,300000,1000000').split(',').map(Number);
 const repetitions = Number(option('--repetitions', 5));
 // The coarse-level sizes the web app steps through (web/src/live-preview.ts, PREVIEW_SIZES).
-const LEVEL_SIZES = option('--levels', '25000,6000,3000').split(',').map(Number);
+const LEVEL_SIZES = option('--levels', '25000,12000,6000,3000,1500').split(',').map(Number);
 const CHROMIUM = '/usr/bin/chromium';
 
 // Shared by Node and the browser worker (as source text): the grid, and the timing loop.
@@ -56,6 +58,8 @@ function terrainGrid(vertices) {
 }
 const JOBS = [
   { name: 'terrain filter', op: 'filter', params: { signal: '_H', mode: 'ms', hs: 5, hr: 5, radius: 15, kmax: 5 } },
+  { name: 'curvature', op: 'filter', params: { signal: 'curvature', mode: 'ms', hs: 3, hr: 0.3, levels: 2, alpha: 0 } },
+  { name: 'denoise', op: 'denoise', params: { method: 'meanshift' } },
   { name: 'taubin', op: 'smooth', params: { iterations: 10 } },
 ];
 function measure(m, vertices, repetitions, levelSizes) {

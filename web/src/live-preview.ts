@@ -3,7 +3,8 @@
 // analysed once per mesh and level and kept in the worker) and the result is shown at once; when
 // the slider is released the full-resolution run starts and its
 // result replaces the preview. Only the newest change matters: a preview still running when
-// another change comes is stopped (threaded build) or its result dropped, and the newest runs next.
+// another change comes is finished and shown, and the newest value runs next; a release, another
+// preset or another file stops it (threaded build) or drops its result.
 // The Result section says which one is on screen (the `result-kind` element).
 
 import type { FilterControls } from './filter-controls';
@@ -41,30 +42,31 @@ const WARM_UP_VERTICES = 200_000;
 /** Ops whose parameters mean the same on a coarser mesh (not a vertex index, as geodesic's source). */
 const PREVIEWABLE = new Set(['filter', 'denoise', 'smooth', 'curvature']);
 
-// Measured with bench/wasm/preview.mjs (threaded build, 2 cores): see costPerVertex.
-const FILTER_US_PER_AREA = 0.36;
-const DENOISE_US = 60;
+// From bench/wasm/preview.mjs (threaded build, 2 cores shared with other work; op time on a
+// 2,500-vertex level): the Terrain preset's filter (r = 15 AEL, k_max 5) 95 µs a vertex, Filter
+// curvature (r = 9, k_max 50, two levels inside) 65, Denoise 82, Taubin (10 steps) under 1.
+const FILTER_US_PER_AREA = 0.9;
+const DENOISE_US = 100;
 const SMOOTH_US_PER_ITERATION = 0.05;
 const OTHER_US = 1;
 
 /**
  * What an op costs per vertex of the coarse level (µs, threaded build on 2 cores), before a preview
- * has measured it: the mean shift grows with the neighbourhood's area (r² in AEL) and the passes,
- * and a hybrid op (levels > 0) filters ~0.7^L of the level's vertices.
- * Figures: bench/wasm/preview.mjs, docs/performance.md#live-preview.
+ * has measured it: the mean shift grows with the neighbourhood's area (r² in AEL) and the passes.
+ * A high guess only costs detail in the first preview (adapt() moves up after it); a low one makes
+ * the first drag wait. Figures: bench/wasm/preview.mjs, docs/performance.md#live-preview.
  */
 export function costPerVertex(op: string, params: Record<string, unknown>): number {
   const number = (key: string, fallback: number) => (typeof params[key] === 'number' && Number.isFinite(params[key]) ? (params[key] as number) : fallback);
-  const coarser = 0.7 ** Math.max(0, number('levels', 0));
   switch (op) {
     case 'filter': {
       const hs = number('hs', 3);
       const radius = number('radius', 0) > 0 ? number('radius', 0) : 3 * hs;
       const passes = params.mode === 'bms' ? Math.max(1, number('passes', 10)) : 1;
-      return FILTER_US_PER_AREA * radius * radius * passes * coarser;
+      return FILTER_US_PER_AREA * radius * radius * passes;
     }
     case 'denoise':
-      return DENOISE_US * coarser;
+      return DENOISE_US;
     case 'smooth':
       return SMOOTH_US_PER_ITERATION * Math.max(1, number('iterations', 10));
     default:
@@ -100,10 +102,15 @@ interface Wanted {
   preset: Preset;
   params: Record<string, unknown>;
   ticket: number;
+  /** this.generation when asked: a commit, a drop or a new file makes the preview worthless. */
+  generation: number;
 }
 
 export class LivePreview {
+  /** Counts changes: the newest value is the one to preview next. */
   private ticket = 0;
+  /** Counts what makes previews in flight worthless (a commit, a drop, a new file). */
+  private generation = 0;
   private wanted: Wanted | null = null;
   private running: Promise<void> | null = null;
   /** The analysis of the coarse level made ahead of the first drag (warmUp), while it runs. */
@@ -175,12 +182,19 @@ export class LivePreview {
     if (vertexCount(states) > WARM_UP_VERTICES) return;
     const params = this.parts.panel.params();
     const size = this.levelSize(preset, params);
+    // Every level from the largest a preview may use down to this preset's, one analysis of the
+    // previous level's coarse mesh each, so that adapt() can move either way at no cost.
+    const cap = MAX_SHARE * vertexCount(states);
+    const sizes = PREVIEW_SIZES.filter((s) => s >= size && s <= cap);
+    if (sizes.length === 0) sizes.push(size);
     this.warming = (async () => {
       for (const state of states) {
-        if (states !== this.parts.filters.meshStates() || this.parts.filters.isBusy()) return;
-        await this.ensureLoaded(state, params);
-        // Taubin with no step: the analysis and the way back, nothing else.
-        await this.parts.client.preview(previewId(state), 'smooth', { iterations: 0 }, size);
+        for (const s of sizes) {
+          if (states !== this.parts.filters.meshStates() || this.parts.filters.isBusy()) return;
+          await this.ensureLoaded(state, params);
+          // Taubin with no step: the analysis and the way back, nothing else.
+          await this.parts.client.preview(previewId(state), 'smooth', { iterations: 0 }, s);
+        }
       }
     })()
       .catch(() => undefined)
@@ -212,14 +226,12 @@ export class LivePreview {
   private request(): void {
     const preset = this.parts.panel.preset();
     if (!this.active(preset)) return;
-    this.wanted = { preset, params: this.parts.panel.params(), ticket: ++this.ticket };
+    this.wanted = { preset, params: this.parts.panel.params(), ticket: ++this.ticket, generation: this.generation };
     // Said where the person looks (the view's status) until the first preview of this change shows.
     if (this.parts.kind.dataset.kind !== 'preview') this.setKind('computing', 'computing preview…');
-    if (this.warming) return;
-    if (this.running) {
-      this.parts.client.stopPreview();
-      return;
-    }
+    // A preview in flight finishes and the newest value runs next: stopping it at every step of a
+    // drag (a step every ~16 ms, a preview ~100 ms) showed nothing until the pointer paused.
+    if (this.warming || this.running) return;
     this.start();
   }
 
@@ -244,6 +256,7 @@ export class LivePreview {
     if (!this.active(preset) && !(this.parts.enabled.checked && this.hasPreview())) return;
     this.wanted = null;
     this.ticket++;
+    this.generation++;
     if (this.running) this.parts.client.stopPreview();
     // After the preview in flight (the worker runs one request at a time anyway).
     void this.idle().then(() => this.parts.filters.run(preset, this.parts.panel.params()));
@@ -262,17 +275,19 @@ export class LivePreview {
         for (const state of states) {
           await this.ensureLoaded(state, job.params);
           outputs.push(await this.parts.client.preview(previewId(state), job.preset.op, job.params, this.levelSize(job.preset, job.params)));
-          if (job.ticket !== this.ticket) break;
+          if (job.generation !== this.generation) break;
         }
-        if (job.ticket !== this.ticket || states !== this.parts.filters.meshStates() || this.parts.filters.isBusy()) continue;
+        // A newer value waiting does not make this one worthless: it is newer than what is on
+        // screen, and the newer one runs next.
+        if (job.generation !== this.generation || states !== this.parts.filters.meshStates() || this.parts.filters.isBusy()) continue;
         const ms = performance.now() - started;
         this.adapt(job.preset.id, outputs, ms);
         this.show(job, states, outputs, ms);
       } catch (error) {
         // A stopped preview is superseded by a newer one; a failing one says why where a run would.
-        if (job.ticket === this.ticket && !(error instanceof Error && /cancel/i.test(error.message))) {
+        if (job.generation === this.generation && !(error instanceof Error && /cancel/i.test(error.message))) {
           this.setKind('none', `preview failed: ${error instanceof Error ? error.message : String(error)}`);
-        } else if (job.ticket === this.ticket && this.parts.kind.dataset.kind === 'computing') {
+        } else if (job.generation === this.generation && this.parts.kind.dataset.kind === 'computing') {
           this.setKind(this.settled.kind, this.settled.text);
         }
       }
@@ -319,15 +334,16 @@ export class LivePreview {
     viewer.geometryChanged();
     const coarse = outputs.reduce((t, o) => t + Number(o.stats.previewVertices ?? o.stats.vertices), 0);
     this.setKind('preview', `preview (coarse level, ${coarse.toLocaleString('en-US')} vertices, ${ms.toFixed(0)} ms)`);
-    this.events.push({ kind: 'preview', at: performance.now(), vertices: coarse, ms });
+    this.events.push({ kind: "preview", at: performance.now(), vertices: coarse, ms });
   }
 
   /**
    * Picks the preset's coarse level for the next previews from how long this one took. The op's
    * share grows with the coarse vertex count; the rest (bringing the result back to every vertex,
-   * drawing it) does not. Levels only go down, and only for the file on screen (a smaller level
-   * analyses the kept coarse mesh further, which is quick; the first analysis of a large mesh is
-   * not: ~15 s for 1M vertices, bench/wasm/preview.mjs).
+   * drawing it) does not. A level too slow for TARGET_MS gives way to the largest one that fits; a
+   * level that leaves room moves up one, at most MAX_SHARE of the mesh, when the next one would still
+   * fit with a fifth to spare (the warm-up analysed the levels in between, so this is quick; only a
+   * mesh above WARM_UP_VERTICES analyses on the way).
    */
   private adapt(presetId: string, outputs: RunOutput[], ms: number): void {
     const sum = (key: string) => outputs.reduce((t, o) => t + Number(o.stats[key] ?? 0), 0);
@@ -337,9 +353,14 @@ export class LivePreview {
     const perVertex = opMs / vertices;
     const budget = Math.max(TARGET_MS - fixedMs, TARGET_MS / 2);
     const index = this.sizeIndex.get(presetId) ?? PREVIEW_SIZES.length - 1;
-    if (PREVIEW_SIZES[index]! * perVertex <= budget) return;
-    const fits = PREVIEW_SIZES.findIndex((size) => size * perVertex <= budget);
-    this.sizeIndex.set(presetId, fits < 0 ? PREVIEW_SIZES.length - 1 : Math.max(fits, index));
+    if (PREVIEW_SIZES[index]! * perVertex > budget) {
+      const fits = PREVIEW_SIZES.findIndex((size) => size * perVertex <= budget);
+      this.sizeIndex.set(presetId, fits < 0 ? PREVIEW_SIZES.length - 1 : Math.max(fits, index));
+      return;
+    }
+    const larger = PREVIEW_SIZES[index - 1];
+    const cap = MAX_SHARE * vertexCount(this.parts.filters.meshStates());
+    if (larger !== undefined && larger <= cap && larger * perVertex <= 0.8 * budget) this.sizeIndex.set(presetId, index - 1);
   }
 
   private hasPreview(): boolean {
@@ -350,6 +371,7 @@ export class LivePreview {
   drop(): void {
     this.wanted = null;
     this.ticket++;
+    this.generation++;
     if (this.parts.kind.dataset.kind === 'computing') this.setKind(this.settled.kind, this.settled.text);
     if (!this.hasPreview()) return;
     const states = this.parts.filters.meshStates();
