@@ -8,9 +8,9 @@ const app = useApp();
 
 const EXPECTED = {
   'noisy-scan': { file: 'fertility-noisy.glb', preset: 'denoise' },
-  'colored-mesh': { file: 'b9-colors.glb', preset: 'smooth-colors' },
+  'colored-mesh': { file: 'autzen-terrain.glb', preset: 'smooth-colors' },
   terrain: { file: 'autzen-terrain.glb', preset: 'terrain' },
-  'cad-part': { file: 'fandisk.glb', preset: 'filter-curvature' },
+  'cad-part': { file: 'fandisk-noisy.glb', preset: 'filter-curvature' },
 };
 
 async function openCase(page, id) {
@@ -91,7 +91,7 @@ test('a file of one\'s own leaves the case: the hint goes and the URL no longer 
   assert.doesNotMatch(await page.evaluate(() => decodeURIComponent(location.hash)), /case=/);
   // Back returns to the case.
   await page.goBack();
-  await waitForStatusAbout(page, 'fandisk.glb');
+  await waitForStatusAbout(page, 'fandisk-noisy.glb');
   assert.equal(await page.getByTestId('gallery-hint').isVisible(), true);
 });
 

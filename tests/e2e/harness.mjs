@@ -89,8 +89,8 @@ export async function waitForStatusAbout(page, name) {
 
 /** Screenshots the 3D view into test-output/e2e/NAME.png and returns the decoded image. */
 export async function shoot(page, name) {
-  // The view's buttons float over the canvas; they are not part of the picture.
-  const png = await page.getByTestId('canvas').screenshot({ path: `${outputDir}${name}.png`, style: '.view-tools { visibility: hidden; }' });
+  // The view's buttons and run state float over the canvas; they are not part of the picture.
+  const png = await page.getByTestId('canvas').screenshot({ path: `${outputDir}${name}.png`, style: '.view-tools, .view-status { visibility: hidden; }' });
   return decodePng(png);
 }
 
