@@ -116,9 +116,21 @@ export async function runPreset(page, presetId, values = {}) {
 
 /**
  * Types numbers into the lil-gui fields of the current preset; choices (shown by label, sent by
- * value) are set through the page's hook.
+ * value) are set through the page's hook. Live preview is off meanwhile: an entered value would
+ * start a preview and a full run of its own (live-preview.ts), and these tests run when they say.
  */
 export async function setParams(page, values) {
+  const live = page.getByTestId('live-preview');
+  const wasLive = await live.isChecked();
+  if (wasLive) await live.uncheck();
+  try {
+    await typeParams(page, values);
+  } finally {
+    if (wasLive) await live.check();
+  }
+}
+
+async function typeParams(page, values) {
   for (const [key, value] of Object.entries(values)) {
     const field = page.locator(`[data-param="${key}"]`);
     // Expert parameters sit in a folded folder: unfold it, as a person would.

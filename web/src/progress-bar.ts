@@ -9,6 +9,13 @@
 // the estimate stayed steady (two estimates in a row within a factor of 1.5), never for a stage
 // that is about to end anyway.
 
+/**
+ * Stages whose fraction is of an upper bound: the default denoiser races its candidates and stops
+ * when its risk estimate rises (core/src/denoise_default.cpp reports passes run over the most it
+ * may run), so "17%" ended the run and no time left can be read from it.
+ */
+const OPEN_ENDED = ['denoise passes'];
+
 /** Seconds of recent progress the rate is measured over. */
 const RATE_WINDOW_S = 1.5;
 /** No estimate before a stage has run this long (s). */
@@ -56,6 +63,10 @@ export class ProgressBar {
       return;
     }
     this.element.dataset.state = 'running';
+    if (OPEN_ENDED.some((name) => stage.endsWith(name))) {
+      this.show(fraction, `${stage}… (until the estimated error stops falling)`);
+      return;
+    }
     this.samples.push([t, stageFraction]);
     while (this.samples.length > 2 && t - this.samples[0]![0] > RATE_WINDOW_S) this.samples.shift();
     const eta = this.estimate(t, stageFraction);
