@@ -23,7 +23,7 @@ import type { RunOutput } from './worker/protocol';
  * cost guess (costPerVertex) fits in the budget and that holds at most MAX_SHARE of the mesh; one
  * slower than TARGET_MS moves its preset to a smaller level (adapt).
  */
-export const PREVIEW_SIZES = [25_000, 12_000, 6_000, 3_000, 1_500];
+export const PREVIEW_SIZES = [25_000, 12_000, 6_000, 3_000, 1_500, 750];
 const TARGET_MS = 200;
 /** Share of TARGET_MS the op itself may take; the rest brings the result back and draws it. */
 const OP_SHARE = 0.6;
@@ -196,6 +196,16 @@ export class LivePreview {
           await this.parts.client.preview(previewId(state), 'smooth', { iterations: 0 }, s);
         }
       }
+      // The preset's own op once, not shown: the browser compiles a WebAssembly function fully
+      // only after its first calls (the first preview of the denoiser took 250 ms, the next ones
+      // 100), and its time picks the level before the first drag (adapt).
+      const started = performance.now();
+      const outputs: RunOutput[] = [];
+      for (const state of states) {
+        if (states !== this.parts.filters.meshStates() || this.parts.filters.isBusy()) return;
+        outputs.push(await this.parts.client.preview(previewId(state), preset.op, params, this.levelSize(preset, params)));
+      }
+      this.adapt(preset.id, outputs, performance.now() - started);
     })()
       .catch(() => undefined)
       .finally(() => {
