@@ -45,9 +45,11 @@ Command addNoise(CLI::App& app) {
   sub->add_option("--amount", a->noise.amount, "magnitude in multiples of the average edge length")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   const std::map<std::string, NoiseDistribution> dists = {
-      {"fixed", NoiseDistribution::Fixed}, {"uniform", NoiseDistribution::Uniform}, {"gaussian", NoiseDistribution::Gaussian}};
+      {"fixed", NoiseDistribution::Fixed}, {"uniform", NoiseDistribution::Uniform}, {"gaussian", NoiseDistribution::Gaussian},
+      {"impulsive", NoiseDistribution::Impulsive}};
   sub->add_option("--dist", a->noise.distribution,
-                  "fixed: |d| = amount*AEL; uniform: |d| in [0, amount*AEL]; gaussian: sigma = amount*AEL")
+                  "fixed: |d| = amount*AEL; uniform: |d| in [0, amount*AEL]; gaussian: sigma = amount*AEL; "
+                  "impulsive: a tenth of the vertices, sigma = amount*AEL")
       ->transform(CLI::CheckedTransformer(dists, CLI::ignore_case));
   const std::map<std::string, NoiseDirection> dirs = {{"random", NoiseDirection::Random}, {"normal", NoiseDirection::Normal}};
   sub->add_option("--direction", a->noise.direction, "random: uniformly random direction; normal: along the vertex normal")

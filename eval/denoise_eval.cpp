@@ -1,23 +1,32 @@
-// denoise_eval: the denoising scoreboard (docs/denoising.md#scoreboard). Clean meshes are
-// scaled to the unit cube, given noise of 0.5 AEL in random directions (fixed and uniform magnitude) with fixed seeds, and
-// every method in `methods()`; the ground-truth pairs of ../shared/data are evaluated as they are.
-// Prints one Markdown table per mesh and noise, then a summary.
-//   denoise_eval [--mesh SUBSTRING] [--quick] [--markdown FILE] [--data DIR]
+// denoise_eval: the denoising evaluation (docs/denoising.md#the-evaluation). Every clean mesh of the
+// catalogue (eval/catalogue.cpp) gets four noises; the ground-truth pairs are evaluated as they are.
+// Each case is scored for the noisy input, Taubin smoothing and the bilateral normal filter (both
+// tuned per case against the truth: oracles), the default denoiser, and, on its pairs, GCN-Denoiser's
+// published result. Cases are split into a tuning set and a validation set by family; the report
+// gives each set on its own.
+//   denoise_eval [--set tuning|validation|all] [--mesh SUBSTRING] [--seeds LIST] [--markdown FILE] ...
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <sstream>
-#include <thread>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "catalogue.hpp"
 #include "geoshift/bilateral_normal.hpp"
 #include "geoshift/denoise.hpp"
 #include "geoshift/error.hpp"
@@ -30,245 +39,338 @@
 
 namespace fs = std::filesystem;
 using namespace geoshift;
+using namespace geoshift::eval;
 
 namespace {
 
-// What a method hands back: the denoised positions and anything worth a note in the table.
-struct Outcome {
-  std::vector<Vec3> positions;
+// One method's figures on one case.
+struct Score {
+  double rms = NAN, angle = NAN, ms = -1;  // RMS ×10², mean face-normal angle (°), wall clock
   std::string note;
-  double ms = -1;  // >= 0: the method timed itself (to leave out a search on the ground truth)
+  bool present() const { return std::isfinite(rms); }
 };
 
-// A denoiser under test. `clean` is there only for methods tuned against the ground truth (and
-// says so in their name); everything else must ignore it.
-struct Method {
-  std::string name;
-  std::function<Outcome(const Mesh& noisy, const Mesh& clean)> run;
-};
-
-double rmsTo(const std::vector<Vec3>& positions, const Mesh& clean) {
-  return pointToSurface(positions, clean).rms;
+Score scoreOf(const Case& c, std::vector<Vec3> positions, std::string note, double ms) {
+  Mesh result = c.noisy;
+  result.positions() = std::move(positions);
+  return {100 * pointToSurface(result.positions(), c.clean).rms, meanNormalAngleError(result, c.clean), ms,
+          std::move(note)};
 }
 
-Outcome taubin(const Mesh& noisy, int steps) {
-  Mesh m = noisy;
-  TaubinOptions o;  // MeshLab's λ = 0.5, μ = −0.53
-  o.iterations = steps;
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// --- the oracles: tuned against the truth per case ----------------------------------------------
+
+// Taubin (MeshLab's λ = 0.5, μ = −0.53), one λ|μ pair at a time, keeping the step count of least RMS.
+Score taubinTuned(const Case& c) {
+  Mesh m = c.noisy;
+  TaubinOptions one;
+  one.iterations = 1;
+  int best = 0;
+  double bestRms = pointToSurface(m.positions(), c.clean).rms;
+  for (int step = 1; step <= 200; ++step) {
+    taubinSmooth(m, one);
+    const double rms = pointToSurface(m.positions(), c.clean).rms;
+    if (rms < bestRms) {
+      bestRms = rms;
+      best = step;
+    }
+  }
+  m = c.noisy;
+  TaubinOptions o;
+  o.iterations = best;
+  const auto t0 = std::chrono::steady_clock::now();
   taubinSmooth(m, o);
-  return {m.positions(), std::to_string(steps) + " steps"};
+  return scoreOf(c, m.positions(), "best of 0..200: " + std::to_string(best) + " steps", msSince(t0));
 }
 
-// Best of a small grid of the bilateral normal filter (σ_r × normal iterations), chosen on the RMS
-// to the clean mesh: a baseline tuned against the ground truth.
-Outcome bilateralTuned(const Mesh& noisy, const Mesh& clean) {
-  Outcome best;
+// The bilateral normal filter (Zheng et al. 2011), best RMS of σ_r × normal iterations.
+Score bilateralTuned(const Case& c) {
+  Score best;
   double bestRms = std::numeric_limits<double>::infinity();
   for (double sigma : {0.2, 0.35, 0.5}) {
     for (int iterations : {5, 10, 20, 40}) {
-      Mesh m = noisy;
+      Mesh m = c.noisy;
       BilateralNormalOptions o;
       o.sigmaRange = sigma;
       o.normalIterations = iterations;
+      o.vertexUpdate.parallel.threads = 1;
       const auto t0 = std::chrono::steady_clock::now();
       bilateralNormalDenoise(m, o);
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      const double rms = rmsTo(m.positions(), clean);
+      const double ms = msSince(t0);
+      const double rms = pointToSurface(m.positions(), c.clean).rms;
       if (rms < bestRms) {
         bestRms = rms;
         std::ostringstream note;
-        note << "best of 12: σ_r " << sigma << ", " << iterations << " iterations (time of those alone)";
-        best = Outcome{m.positions(), note.str(), ms};
+        note << "best of 12: σ_r " << sigma << ", " << iterations << " iterations";
+        best = scoreOf(c, m.positions(), note.str(), ms);
       }
     }
   }
   return best;
 }
 
-double evalStrength = 1;  // --strength, --max-passes: what-ifs of the default denoiser's options
-int evalMaxPasses = 0;
-std::vector<double> evalRange;
-std::vector<int> evalPresmoothing;
-int evalVertexIterations = 0;
-double evalRadius = 0;
-int evalPatience = 0;
-long long evalSeed = -1;  // --seed: of the risk estimate's probe
-int evalRiskNormalSmoothing = -1;  // --risk-normal-smoothing
-int evalFixedPasses = 0;  // --fixed-passes: no risk estimate, the first pre-smoothing candidate and this many passes
+// The oracles do not change with the denoiser: their scores are kept in a cache keyed by the case's
+// bits and the oracle's name, so that re-running the evaluation costs only the denoiser.
+struct OracleCache {
+  fs::path dir;  // empty: no cache
 
-Outcome meanShiftDenoise(const Mesh& noisy, DenoisePreset preset) {
-  Mesh m = noisy;
+  static std::string key(const Case& c, const std::string& method) {
+    std::uint64_t h = fnv1a(method + "/v1");
+    auto mix = [&](const void* p, size_t n) {
+      const auto* b = static_cast<const unsigned char*>(p);
+      for (size_t i = 0; i < n; ++i) {
+        h ^= b[i];
+        h *= 1099511628211ull;
+      }
+    };
+    for (const Mesh* m : {&c.clean, &c.noisy}) {
+      mix(m->positions().data(), m->positions().size() * sizeof(Vec3));
+      mix(m->faces().data(), m->faces().size() * sizeof(Face));
+    }
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+  }
+
+  Score get(const Case& c, const std::string& method, const std::function<Score(const Case&)>& run) const {
+    const fs::path file = dir.empty() ? fs::path() : dir / (key(c, method) + ".txt");
+    if (!file.empty() && fs::exists(file)) {
+      std::ifstream in(file);
+      Score s;
+      in >> s.rms >> s.angle >> s.ms;
+      std::getline(in >> std::ws, s.note);
+      if (in || in.eof()) return s;
+    }
+    Score s = run(c);
+    if (!file.empty()) {
+      fs::create_directories(dir);
+      const fs::path tmp = file.string() + ".tmp";
+      std::ofstream(tmp) << std::setprecision(17) << s.rms << " " << s.angle << " " << s.ms << " " << s.note << "\n";
+      fs::rename(tmp, file);
+    }
+    return s;
+  }
+};
+
+// --- the denoiser under test ---------------------------------------------------------------------
+
+// --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
+struct WhatIf {
+  std::optional<double> strength, radius;
+  std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, ladder;
+  std::optional<double> normalWeight;
+  bool ladderStarts = false, trace = false;
+  std::vector<double> range;
+  std::vector<int> presmoothing;
+  bool paper = false;
+
+  void apply(DenoiseOptions& o) const {
+    if (strength) o.strength = *strength;
+    if (radius) o.neighborhood.radius = *radius;
+    if (maxPasses) o.maxPasses = *maxPasses;
+    if (vertexIterations) o.vertexIterations = *vertexIterations;
+    if (patience) o.patience = *patience;
+    if (fixedPasses) o.fixedPasses = *fixedPasses;
+    if (riskNormalSmoothing) o.riskNormalSmoothing = *riskNormalSmoothing;
+    if (!range.empty()) o.rangeBandwidths = range;
+    if (!presmoothing.empty()) o.presmoothing = presmoothing;
+    if (probeSpacing) o.probeSpacing = *probeSpacing;
+    if (ladder) o.taubinLadder = *ladder;
+    if (normalWeight) o.normalRiskWeight = *normalWeight;
+    if (ladderStarts) o.ladderStartsPasses = true;
+  }
+};
+
+std::string fixed3(double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3f", x);
+  return buf;
+}
+
+Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
+  Mesh m = c.noisy;
   DenoiseOptions o;
-  o.preset = preset;
-  o.strength = evalStrength;
-  if (evalMaxPasses > 0) o.maxPasses = evalMaxPasses;
-  if (!evalRange.empty()) o.rangeBandwidths = evalRange;
-  if (!evalPresmoothing.empty()) o.presmoothing = evalPresmoothing;
-  if (evalVertexIterations > 0) o.vertexIterations = evalVertexIterations;
-  if (evalRadius > 0) o.neighborhood.radius = evalRadius;
-  if (evalPatience > 0) o.patience = evalPatience;
-  if (evalSeed >= 0) o.seed = static_cast<std::uint64_t>(evalSeed);
-  if (evalFixedPasses > 0) o.fixedPasses = evalFixedPasses;
-  if (evalRiskNormalSmoothing >= 0) o.riskNormalSmoothing = evalRiskNormalSmoothing;
+  o.threads = 1;
+  o.seed = seed;
+  if (paper) {
+    o.preset = DenoisePreset::Paper;
+  } else {
+    w.apply(o);
+  }
+  std::ostringstream trace;
+  if (w.trace && !paper) {
+    // Every candidate's risks against the truth (slow: two distance queries per candidate).
+    trace.precision(4);
+    o.onCandidate = [&](int steps, int passes, const std::vector<Vec3>& x, double positionRisk, double normalRisk) {
+      const Score s = scoreOf(c, x, "", -1);
+      const double ael = averageEdgeLength(c.noisy);
+      trace << "  trace " << c.mesh << " | " << c.noise << " | k " << steps << " t " << passes << " | SURE pos "
+            << std::sqrt(std::max(0.0, positionRisk)) / ael << " AEL, normal " << std::sqrt(std::max(0.0, normalRisk)) * 57.29578
+            << "° | true " << fixed3(s.rms) << " / " << fixed3(s.angle) << "\n";
+    };
+  }
+  const auto t0 = std::chrono::steady_clock::now();
   const DenoiseResult r = denoise(m, o);
+  const double ms = msSince(t0);
+  if (w.trace) std::cerr << trace.str();
   std::ostringstream note;
   note.precision(3);
-  if (preset == DenoisePreset::Paper)
-    note << o.paper.passes << " passes, " << r.meanIterations << " iterations/vertex/pass";
-  else {
-    note << "noise " << r.noiseLevel << " AEL (estimated); Taubin " << r.presmoothingSteps << " + " << r.passes
-         << " at h_r " << r.rangeBandwidth;
-    if (evalFixedPasses > 0)
-      note << " passes (fixed)";
-    else
-      note << " passes by SURE (est. error " << r.estimatedError << " AEL)";
-  }
-  note << ", " << r.threads << " threads";
-  return Outcome{m.positions(), note.str()};
-}
-
-// The scoreboard's columns after "noisy": two baselines tuned against the truth, then ours.
-std::vector<Method> methods() {
-  return {
-      {"Taubin, steps tuned on ground truth",
-       [](const Mesh& noisy, const Mesh& clean) {
-         // One λ|μ pair at a time, keeping the step count with the lowest RMS to the clean mesh.
-         Mesh m = noisy;
-         TaubinOptions one;
-         one.iterations = 1;
-         int best = 0;
-         double bestRms = rmsTo(m.positions(), clean);
-         for (int step = 1; step <= 200; ++step) {
-           taubinSmooth(m, one);
-           const double rms = rmsTo(m.positions(), clean);
-           if (rms < bestRms) {
-             bestRms = rms;
-             best = step;
-           }
-         }
-         const auto t0 = std::chrono::steady_clock::now();
-         Outcome o = taubin(noisy, best);  // rerun, so the time column is that of `best` steps
-         o.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-         o.note = "best of 0..200: " + std::to_string(best) + " steps (time of those alone)";
-         return o;
-       }},
-      {"Bilateral normal (Zheng et al. 2011), tuned on ground truth", bilateralTuned},
-      {"Mean shift, default", [](const Mesh& noisy, const Mesh&) { return meanShiftDenoise(noisy, DenoisePreset::Default); }},
-      {"Mean shift, --preset paper", [](const Mesh& noisy, const Mesh&) { return meanShiftDenoise(noisy, DenoisePreset::Paper); }},
-  };
-}
-
-// --- test cases ---------------------------------------------------------------------------------
-
-struct Case {
-  std::string mesh, noise;  // table heading
-  Mesh clean, noisy;        // same connectivity
-};
-
-struct Row {
-  std::string method;
-  double rms = 0, angle = 0, ms = -1;
-  std::string note;
-};
-
-Mesh loadMesh(const fs::path& path) {
-  const Document doc = readDocument(path.string());
-  return buildMesh(worldSoup(doc)).mesh;
-}
-
-struct Source {
-  std::string name;
-  std::function<Mesh()> load;  // the clean mesh, any scale
-};
-
-std::vector<Source> cleanSources(const fs::path& data, bool quick) {
-  std::vector<Source> out;
-  auto procedural = [&](std::string name, std::function<TriangleSoup()> make) {
-    out.push_back({name + " (procedural)", [make] { return buildMesh(make()).mesh; }});
-  };
-  if (quick) {
-    procedural("CAD block", [] { return shapes::box(20, 14, 10, Vec3(1.0, 0.7, 0.5)); });
-    procedural("Sphere", [] { return shapes::icosphere(3); });
+  if (paper) {
+    note << o.paper.passes << " passes";
   } else {
-    procedural("CAD block", [] { return shapes::box(40, 28, 20, Vec3(1.0, 0.7, 0.5)); });
-    procedural("Sphere", [] { return shapes::icosphere(5); });
-    procedural("Torus", [] { return shapes::torus(120, 40); });
-    procedural("Double torus", [] { return shapes::doubleTorus(32); });
+    note << "σ " << r.noiseLevel << " AEL; Taubin " << r.presmoothingSteps << " + " << r.passes << " passes"
+         << (o.fixedPasses > 0 ? " (fixed)" : "") << (o.taubinLadder > 0 ? "; ladder " + std::to_string(r.ladderSteps) : "");
   }
-  const std::vector<std::pair<std::string, std::string>> files = {
-      {"Fandisk", "guided_denoising_bldeng/models/Fandisk0.3/Original.obj"},
-      {"Star", "guided_denoising_bldeng/models/compareJustin/trim-star_rescaled.obj"},
-      {"Block", "guided_denoising_bldeng/models/Block0.4/Original.obj"},
-      {"SharpSphere", "guided_denoising_bldeng/models/SharpSphere0.3/Original.obj"},
-      {"Twelve", "guided_denoising_bldeng/models/Twelve0.5Impulsive/Original.obj"},
-      {"Nicolo", "guided_denoising_bldeng/models/Nicolo0.2/Original.obj"},
-      {"Fertility", "gcn_denoiser/models/fertility.obj"},
-      {"Bunny", "guided_denoising_bldeng/models/Bunny0.2/Original.obj"},
-      {"Julius", "guided_denoising_bldeng/models/Julius0.2/Original.obj"},
-  };
-  for (const auto& [name, rel] : files) {
-    if (quick && name != "Fandisk") continue;
-    const fs::path p = data / rel;
-    if (!fs::exists(p)) {
-      std::cerr << "denoise_eval: skipped " << name << ": " << p.string() << " not found (../shared/data absent)\n";
-      continue;
+  return scoreOf(c, m.positions(), note.str(), ms);
+}
+
+// --- verdicts -------------------------------------------------------------------------------------
+
+// Figures are compared as printed (RMS to 3 decimals, angles to 2): a tie at that precision is a tie.
+double printed(double x, int digits) {
+  const double scale = std::pow(10.0, digits);
+  return std::round(x * scale) / scale;
+}
+
+struct Verdict {
+  bool win = false;      // both numbers at or below both oracles
+  double ratio = 0;      // the larger of ours / best oracle, over the two numbers
+};
+
+Verdict verdict(const Score& ours, const Score& taubin, const Score& bilateral) {
+  const double rms = printed(ours.rms, 3), angle = printed(ours.angle, 2);
+  const double bestRms = std::min(printed(taubin.rms, 3), printed(bilateral.rms, 3));
+  const double bestAngle = std::min(printed(taubin.angle, 2), printed(bilateral.angle, 2));
+  Verdict v;
+  v.win = rms <= bestRms && angle <= bestAngle;
+  v.ratio = std::max(rms / std::max(bestRms, 1e-12), angle / std::max(bestAngle, 1e-12));
+  return v;
+}
+
+struct Result {
+  const Case* c = nullptr;
+  Score noisy, taubin, bilateral, gcn, paper;
+  std::vector<Score> ours;  // one per seed
+};
+
+std::string fixed(double x, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, x);
+  return buf;
+}
+
+std::string pairOf(const Score& s) { return s.present() ? fixed(s.rms, 3) + " / " + fixed(s.angle, 2) : "–"; }
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+std::vector<std::uint64_t> parseSeeds(const std::string& text) {
+  std::vector<std::uint64_t> out;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) {
+    const size_t dash = item.find('-');
+    if (dash == std::string::npos) {
+      out.push_back(std::stoull(item));
+    } else {
+      const std::uint64_t a = std::stoull(item.substr(0, dash)), b = std::stoull(item.substr(dash + 1));
+      if (b < a || b - a > 1000) throw InputError("--seeds: bad range " + item);
+      for (std::uint64_t s = a; s <= b; ++s) out.push_back(s);
     }
-    out.push_back({name, [p] { return loadMesh(p); }});
   }
+  if (out.empty()) throw InputError("--seeds needs at least one seed");
   return out;
 }
 
-struct Pair {
-  std::string name, clean, noisy;
-};
-
-std::vector<Pair> pairs(bool quick) {
-  const std::string g = "guided_denoising_bldeng/models/";
-  std::vector<Pair> all = {
-      {"Fandisk 0.3", g + "Fandisk0.3/Original.obj", g + "Fandisk0.3/Noisy.obj"},
-      {"Fandisk 0.7", g + "Fandisk0.3/Original.obj", g + "Fandisk0.7/Noisy.obj"},
-      {"Star (Solomon 2014)", g + "compareJustin/trim-star_rescaled.obj", g + "compareJustin/trim-star_n0.5_rescaled.obj"},
-      {"Block 0.4", g + "Block0.4/Original.obj", g + "Block0.4/Noisy.obj"},
-      {"SharpSphere 0.3", g + "SharpSphere0.3/Original.obj", g + "SharpSphere0.3/Noisy.obj"},
-      {"Twelve 0.5 impulsive", g + "Twelve0.5Impulsive/Original.obj", g + "Twelve0.5Impulsive/Noisy.obj"},
-      {"Nicolo 0.2", g + "Nicolo0.2/Original.obj", g + "Nicolo0.2/Noisy.obj"},
-      {"Bunny 0.2", g + "Bunny0.2/Original.obj", g + "Bunny0.2/Noisy.obj"},
-      {"Julius 0.2", g + "Julius0.2/Original.obj", g + "Julius0.2/Noisy.obj"},
-      {"Fandisk (GCN, Gaussian)", "gcn_denoiser/models/fandisk.obj", "gcn_denoiser/models/fandisk_gaus_n6_noisy.obj"},
-      {"Fertility (GCN, Gaussian)", "gcn_denoiser/models/fertility.obj", "gcn_denoiser/models/fertility_gaus_n3.obj"},
-  };
-  if (quick) all.resize(1);
-  return all;
+// The tables of one set: every case, then what the set adds up to.
+std::string report(Set set, const std::vector<Result>& results, const std::vector<std::uint64_t>& seeds, bool paper) {
+  std::ostringstream s;
+  std::vector<const Result*> rows;
+  for (const Result& r : results)
+    if (r.c->set == set) rows.push_back(&r);
+  s << "## " << (set == Set::Tuning ? "Tuning set" : "Validation set") << " (" << rows.size() << " cases)\n\n";
+  if (rows.empty()) return s.str();
+  s << "RMS ×10² / mean normal error (°); oracles tuned per case on the truth; geoshift with its defaults, probe seed "
+    << seeds.front() << ". ✓: both numbers at or below both oracles; ratio: the worse of ours / the better oracle.\n\n"
+    << "| case | noise | vertices | noisy | Taubin, tuned | bilateral, tuned | **geoshift** | ✓ | ratio |"
+    << (paper ? " paper preset |" : "") << " GCN-Denoiser | note |\n|---|---|---|---|---|---|---|---|---|"
+    << (paper ? "---|" : "") << "---|---|\n";
+  std::map<std::string, std::pair<int, int>> byCategory;  // won, cases
+  std::vector<int> wonPerSeed(seeds.size(), 0);
+  int within = 0;
+  double worst = 0;
+  std::string worstCase;
+  std::vector<std::string> misses;
+  for (const Result* r : rows) {
+    const Verdict v = verdict(r->ours.front(), r->taubin, r->bilateral);
+    for (size_t k = 0; k < seeds.size(); ++k) wonPerSeed[k] += verdict(r->ours[k], r->taubin, r->bilateral).win;
+    auto& cat = byCategory[r->c->category];
+    cat.first += v.win;
+    ++cat.second;
+    within += v.ratio <= 1.25;
+    if (v.ratio > worst) {
+      worst = v.ratio;
+      worstCase = r->c->mesh + ", " + r->c->noise;
+    }
+    if (!v.win) misses.push_back(r->c->mesh + ", " + r->c->noise);
+    s << "| " << r->c->mesh << " | " << r->c->noise << " | " << r->c->clean.vertexCount() << " | " << pairOf(r->noisy)
+      << " | " << pairOf(r->taubin) << " | " << pairOf(r->bilateral) << " | **" << pairOf(r->ours.front()) << "** | "
+      << (v.win ? "✓" : "✗") << " | " << fixed(v.ratio, 2) << " |" << (paper ? " " + pairOf(r->paper) + " |" : "")
+      << " " << pairOf(r->gcn) << " | " << r->ours.front().note << " |\n";
+  }
+  s << "\n| category | cases | won | |\n|---|---|---|---|\n";
+  for (const auto& [category, counts] : byCategory)
+    s << "| " << category << " | " << counts.second << " | " << counts.first << " | |\n";
+  s << "\n**" << setName(set) << ": won " << wonPerSeed.front() << " of " << rows.size() << "** ("
+    << fixed(100.0 * wonPerSeed.front() / rows.size(), 1) << "%); within 1.25× of the better oracle in both numbers: "
+    << within << " of " << rows.size() << "; worst ratio " << fixed(worst, 2) << " (" << worstCase << ").\n";
+  if (seeds.size() > 1) {
+    s << "\nCases won per probe seed:";
+    for (size_t k = 0; k < seeds.size(); ++k) s << " " << seeds[k] << ": " << wonPerSeed[k] << (k + 1 < seeds.size() ? "," : "");
+    const auto [lo, hi] = std::minmax_element(wonPerSeed.begin(), wonPerSeed.end());
+    s << " (spread " << (*hi - *lo) << ").\n";
+  }
+  if (!misses.empty()) {
+    s << "\nNot won:";
+    for (size_t i = 0; i < misses.size(); ++i) s << (i ? "; " : " ") << misses[i];
+    s << ".\n";
+  }
+  for (const Result* r : rows) {
+    if (!r->gcn.present()) continue;
+    const Score& o = r->ours.front();
+    s << "\nAgainst GCN-Denoiser on " << r->c->mesh << ": ours " << pairOf(o) << ", GCN-Denoiser " << pairOf(r->gcn)
+      << (printed(o.rms, 3) <= printed(r->gcn.rms, 3) && printed(o.angle, 2) <= printed(r->gcn.angle, 2) ? " (both at or below)"
+                                                                                                         : " (not both at or below)")
+      << ".\n";
+  }
+  return s.str() + "\n";
 }
 
-// The noisy file of a pair on the clean file's connectivity (the pairs share face lists and vertex
-// order), both under the clean mesh's unit-cube transform.
-bool loadPair(const fs::path& data, const Pair& p, Case& c) {
-  const fs::path cleanPath = data / p.clean, noisyPath = data / p.noisy;
-  if (!fs::exists(cleanPath) || !fs::exists(noisyPath)) {
-    std::cerr << "denoise_eval: skipped pair " << p.name << ": files not found under " << data.string() << "\n";
-    return false;
-  }
-  const TriangleSoup cleanSoup = worldSoup(readDocument(cleanPath.string()));
-  const TriangleSoup noisySoup = worldSoup(readDocument(noisyPath.string()));
-  if (cleanSoup.positions.size() != noisySoup.positions.size()) {
-    std::cerr << "denoise_eval: skipped pair " << p.name << ": vertex counts differ\n";
-    return false;
-  }
-  const MeshBuild b = buildMesh(cleanSoup);
-  c.mesh = p.name + " (ground-truth pair)";
-  c.noise = "the pair's own noise";
-  c.clean = b.mesh;
-  c.noisy = b.mesh;
-  const Similarity s = normalizeToUnitCube(c.clean);
-  std::vector<char> set(b.mesh.vertexCount(), 0);
-  for (size_t i = 0; i < noisySoup.positions.size(); ++i) {
-    const int v = b.vertexOf[i];
-    if (set[v]) continue;  // welded copies: the first caller vertex stands for all
-    set[v] = 1;
-    c.noisy.position(v) = s.apply(noisySoup.positions[i]);
-  }
-  return true;
+int usage(const char* error) {
+  if (error) std::cerr << "denoise_eval: " << error << "\n";
+  std::cerr
+      << "usage: denoise_eval [options]\n"
+         "  --set tuning|validation|all   which cases (default all); choose defaults on tuning alone\n"
+         "  --mesh SUBSTRING   only cases whose mesh name contains SUBSTRING (case-insensitive)\n"
+         "  --pairs            only the ground-truth pairs\n"
+         "  --quick            one pair and two small procedural meshes, as a smoke test\n"
+         "  --seeds LIST       probe seeds of the denoiser, e.g. 1-8 or 1,3 (default 1); the report counts wins per seed\n"
+         "  --jobs N           cases evaluated at once (default 2; each method runs on one thread)\n"
+         "  --paper            also the paper preset\n"
+         "  --split            print the families of each set and exit\n"
+         "  --noise-estimate   only the estimated against the true noise level of each case\n"
+         "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience,\n"
+         "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --normal-weight, --ladder, --ladder-starts\n"
+         "                     the default denoiser's options of those names (what-ifs)\n"
+         "  --trace            every candidate's risk estimates against its true errors (slow)\n"
+         "  --cache DIR        the oracles' score cache (default build/eval-cache); --no-cache to recompute\n"
+         "  --markdown FILE    also write the report to FILE\n"
+         "  --data DIR         the shared data folder (default ../shared/data of the repository)\n";
+  return error ? 2 : 0;
 }
 
 // The noise along the clean mesh's vertex normals, RMS in the noisy mesh's average edge lengths: what
@@ -286,78 +388,15 @@ double trueNoiseLevel(const Case& c) {
   return std::sqrt(sum / std::max(1, count)) / averageEdgeLength(c.noisy);
 }
 
-std::string lower(std::string s);
-bool noiseOnly = false, pairsOnly = false;
-std::string methodFilter;
-
-std::vector<Row> evaluate(const Case& c, const std::vector<Method>& table) {
-  std::vector<Row> rows;
-  if (noiseOnly) {
-    const NoiseEstimate e = estimateNoise(c.noisy), clean = estimateNoise(c.clean);
-    std::printf("noise | %-45s | %-28s | true %.3f | estimated %.3f | clean mesh %.3f\n", c.mesh.c_str(), c.noise.c_str(),
-                trueNoiseLevel(c), e.level, clean.level);
-    return rows;
-  }
-  rows.push_back({"noisy input", 100 * rmsTo(c.noisy.positions(), c.clean), meanNormalAngleError(c.noisy, c.clean), -1, ""});
-  for (const Method& m : table) {
-    if (!methodFilter.empty() && lower(m.name).find(methodFilter) == std::string::npos) continue;
-    std::cerr << "denoise_eval: " << c.mesh << ", " << c.noise << ": " << m.name << "\n";
-    const auto t0 = std::chrono::steady_clock::now();
-    Outcome o = m.run(c.noisy, c.clean);
-    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (o.ms >= 0) ms = o.ms;
-    Mesh result = c.noisy;
-    result.positions() = std::move(o.positions);
-    rows.push_back({m.name, 100 * rmsTo(result.positions(), c.clean), meanNormalAngleError(result, c.clean), ms, o.note});
-  }
-  return rows;
-}
-
-std::string fixed(double x, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, x);
-  return buf;
-}
-
-std::string table(const Case& c, const std::vector<Row>& rows) {
-  std::ostringstream s;
-  s << "### " << c.mesh << " — " << c.noise << " (" << c.clean.vertexCount() << " vertices)\n\n"
-    << "| method | RMS ×10² | mean normal error (°) | time (ms) | note |\n|---|---|---|---|---|\n";
-  // The method tuned on the ground truth is an oracle; the best of the rest is marked.
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 1; i < rows.size(); ++i) best = std::min(best, rows[i].rms);
-  for (const Row& r : rows) {
-    const std::string rms = fixed(r.rms, 3);
-    s << "| " << r.method << " | " << (r.rms == best ? "**" + rms + "**" : rms) << " | " << fixed(r.angle, 2)
-      << " | " << (r.ms < 0 ? "–" : fixed(r.ms, 0)) << " | " << r.note << " |\n";
-  }
-  return s.str() + "\n";
-}
-
-std::string lower(std::string s) {
-  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return s;
-}
-
-int usage(const char* error) {
-  if (error) std::cerr << "denoise_eval: " << error << "\n";
-  std::cerr << "usage: denoise_eval [--mesh SUBSTRING] [--method SUBSTRING] [--pairs] [--quick] [--noise-estimate] [--markdown FILE] [--data DIR]\n"
-               "  --mesh      only meshes whose name contains SUBSTRING (case-insensitive)\n"
-               "  --quick     a small subset, as a smoke test\n"
-               "  --pairs     only the ground-truth pairs\n"
-               "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience, --seed, --fixed-passes, --risk-normal-smoothing  the default denoiser's options of those names\n"
-               "  --method    only methods whose name contains SUBSTRING\n"
-               "  --noise-estimate  only the estimated against the true noise level of each case\n"
-               "  --markdown  also write the tables to FILE\n"
-               "  --data      the shared data folder (default ../shared/data of the repository)\n";
-  return error ? 2 : 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string filter, markdownPath;
-  bool quick = false;
+  std::string filter, markdownPath, setFilter = "all";
+  bool quick = false, pairsOnly = false, paper = false, splitOnly = false, noiseOnly = false;
+  int jobs = 2;
+  std::vector<std::uint64_t> seeds = {1};
+  WhatIf whatIf;
+  OracleCache cache{"build/eval-cache"};
   const char* env = std::getenv("GEOSHIFT_SHARED_DATA");
   fs::path data = env && *env ? env : GEOSHIFT_SHARED_DATA;
   for (int i = 1; i < argc; ++i) {
@@ -366,103 +405,168 @@ int main(int argc, char** argv) {
       if (i + 1 >= argc) throw InputError(a + " needs a value");
       return argv[++i];
     };
+    auto list = [&](auto parse) {
+      std::stringstream text(value());
+      std::vector<decltype(parse(std::string()))> out;
+      for (std::string item; std::getline(text, item, ',');) out.push_back(parse(item));
+      return out;
+    };
     try {
       if (a == "--mesh") filter = lower(value());
+      else if (a == "--set") setFilter = lower(value());
       else if (a == "--quick") quick = true;
-      else if (a == "--noise-estimate") noiseOnly = true;
-      else if (a == "--method") methodFilter = lower(value());
       else if (a == "--pairs") pairsOnly = true;
-      else if (a == "--strength") evalStrength = std::stod(value());
-      else if (a == "--max-passes") evalMaxPasses = std::stoi(value());
-      else if (a == "--presmoothing") {
-        std::stringstream list(value());
-        for (std::string item; std::getline(list, item, ',');) evalPresmoothing.push_back(std::stoi(item));
-      } else if (a == "--vertex-iterations") evalVertexIterations = std::stoi(value());
-      else if (a == "--radius") evalRadius = std::stod(value());
-      else if (a == "--patience") evalPatience = std::stoi(value());
-      else if (a == "--seed") evalSeed = std::stoll(value());
-      else if (a == "--fixed-passes") evalFixedPasses = std::stoi(value());
-      else if (a == "--risk-normal-smoothing") evalRiskNormalSmoothing = std::stoi(value());
-      else if (a == "--hr") {
-        std::stringstream list(value());
-        for (std::string item; std::getline(list, item, ',');) evalRange.push_back(std::stod(item));
-      }
+      else if (a == "--paper") paper = true;
+      else if (a == "--split") splitOnly = true;
+      else if (a == "--noise-estimate") noiseOnly = true;
+      else if (a == "--seeds") seeds = parseSeeds(value());
+      else if (a == "--jobs") jobs = std::max(1, std::stoi(value()));
+      else if (a == "--strength") whatIf.strength = std::stod(value());
+      else if (a == "--max-passes") whatIf.maxPasses = std::stoi(value());
+      else if (a == "--presmoothing") whatIf.presmoothing = list([](const std::string& s) { return std::stoi(s); });
+      else if (a == "--hr") whatIf.range = list([](const std::string& s) { return std::stod(s); });
+      else if (a == "--vertex-iterations") whatIf.vertexIterations = std::stoi(value());
+      else if (a == "--radius") whatIf.radius = std::stod(value());
+      else if (a == "--patience") whatIf.patience = std::stoi(value());
+      else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
+      else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
+      else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());
+      else if (a == "--normal-weight") whatIf.normalWeight = std::stod(value());
+      else if (a == "--ladder") whatIf.ladder = std::stoi(value());
+      else if (a == "--ladder-starts") whatIf.ladderStarts = true;
+      else if (a == "--trace") whatIf.trace = true;
+      else if (a == "--cache") cache.dir = value();
+      else if (a == "--no-cache") cache.dir.clear();
       else if (a == "--markdown") markdownPath = value();
       else if (a == "--data") data = value();
       else if (a == "-h" || a == "--help") return usage(nullptr);
       else return usage(("unknown argument '" + a + "'").c_str());
-    } catch (const InputError& e) {
+    } catch (const std::exception& e) {
       return usage(e.what());
     }
   }
+  if (setFilter != "all" && setFilter != "tuning" && setFilter != "validation") return usage("--set takes tuning, validation or all");
+
+  // The catalogue and its split.
+  std::vector<MeshEntry> meshes = cleanMeshes(data);
+  const auto split = splitFamilies(meshes);
+  auto setOf = [&](const std::string& family) {
+    for (const auto& [f, s] : split)
+      if (f == family) return s;
+    return Set::Tuning;
+  };
+  if (splitOnly) {
+    for (Set set : {Set::Tuning, Set::Validation}) {
+      std::cout << setName(set) << ":\n";
+      for (const MeshEntry& m : meshes)
+        if (setOf(m.family) == set) std::cout << "  " << m.name << " [" << m.family << "; " << m.category << (m.seen ? "; seen" : "") << "]\n";
+    }
+    return 0;
+  }
+  auto wantedSet = [&](Set s) { return setFilter == "all" || setFilter == setName(s); };
   auto wanted = [&](const std::string& name) { return filter.empty() || lower(name).find(filter) != std::string::npos; };
 
-  const std::vector<Method> table_ = methods();
-  std::ostringstream md;
-  md << "# Denoising evaluation\n\nRMS: one-sided point-to-surface distance, result vertices to the clean surface (as MeshLab's "
-        "Hausdorff filter), meshes scaled to the unit cube, ×10². Normal error: mean angle between corresponding face normals. "
-        "Time: wall clock of the method alone on this machine (" << std::thread::hardware_concurrency()
-     << " hardware threads). Synthetic noise: uniformly random direction, magnitude fixed at 0.5 AEL or uniform in [0, 0.5 AEL] "
-        "(the two readings of the paper's §4.1), seed 1. **Bold**: lowest RMS in the table.\n\n";
-  struct Summary {
-    std::string label;
-    std::vector<Row> rows;
-  };
-  std::vector<Summary> summary;
-  auto run = [&](const Case& c) {
-    const std::vector<Row> rows = evaluate(c, table_);
-    if (noiseOnly) return;
-    const std::string t = table(c, rows);
-    std::cout << t << std::flush;
-    md << t;
-    summary.push_back({c.mesh + ", " + c.noise, rows});
-  };
-
-  try {
-    for (const Source& src : cleanSources(data, quick)) {
-      if (!wanted(src.name) || pairsOnly) continue;
-      Mesh clean = src.load();
-      normalizeToUnitCube(clean);
-      for (NoiseDistribution dist : {NoiseDistribution::Fixed, NoiseDistribution::Uniform}) {
-        Case c{src.name, dist == NoiseDistribution::Fixed ? "noise 0.5 AEL fixed" : "noise uniform [0, 0.5] AEL", clean, clean};
-        NoiseOptions o;
-        o.amount = 0.5;
-        o.distribution = dist;
-        o.seed = 1;
-        addNoise(c.noisy, o);
-        run(c);
+  // Tasks: one per (clean mesh, noise) and one per pair; each builds its case when it runs.
+  std::vector<std::function<std::optional<Case>()>> tasks;
+  if (quick) {
+    meshes.erase(std::remove_if(meshes.begin(), meshes.end(),
+                                [](const MeshEntry& m) { return m.family != "sphere" && m.family != "cad block"; }),
+                 meshes.end());
+  }
+  if (!pairsOnly) {
+    for (const MeshEntry& m : meshes) {
+      if (!wanted(m.name) || !wantedSet(setOf(m.family))) continue;
+      std::vector<NoiseSpec> noises = noisesFor(m.name);
+      if (quick) noises.resize(1);
+      for (const NoiseSpec& n : noises) {
+        tasks.push_back([&m, n, set = setOf(m.family), quick]() -> std::optional<Case> {
+          Mesh clean = quick ? buildMesh(m.family == "sphere" ? shapes::icosphere(3) : shapes::box(20, 14, 10, Vec3(1.0, 0.7, 0.5))).mesh
+                             : m.load();
+          normalizeToUnitCube(clean);
+          Case c{m.name, n.label, m.family, m.category, set, clean, clean, ""};
+          addNoise(c.noisy, n.options);
+          return c;
+        });
       }
     }
-    for (const Pair& p : pairs(quick)) {
-      if (!wanted(p.name)) continue;
+  }
+  std::vector<Pair> pairs = groundTruthPairs();
+  if (quick) pairs.resize(1);
+  for (const Pair& p : pairs) {
+    if (!wanted(p.name) || !wantedSet(setOf(p.family))) continue;
+    tasks.push_back([&p, &data, set = setOf(p.family)]() -> std::optional<Case> {
       Case c;
-      if (loadPair(data, p, c)) run(c);
-    }
-  } catch (const InputError& e) {
-    std::cerr << "denoise_eval: error: " << e.what() << "\n";
-    return 1;
+      if (!loadPair(data, p, c)) return std::nullopt;
+      c.set = set;
+      return c;
+    });
   }
 
-  if (!summary.empty()) {
-    std::ostringstream s;
-    s << "## Summary: RMS ×10² / mean normal error (°)\n\n| case |";
-    for (const Row& r : summary.front().rows) s << " " << r.method << " |";
-    s << "\n|---|";
-    for (size_t i = 0; i < summary.front().rows.size(); ++i) s << "---|";
-    s << "\n";
-    for (const Summary& row : summary) {
-      s << "| " << row.label << " |";
-      for (const Row& r : row.rows) s << " " << fixed(r.rms, 3) << " / " << fixed(r.angle, 1) << " |";
-      s << "\n";
+  std::vector<std::optional<Case>> cases(tasks.size());
+  std::vector<Result> results(tasks.size());
+  std::atomic<size_t> next{0};
+  std::mutex log;
+  std::exception_ptr failure;
+  auto worker = [&] {
+    for (size_t t; (t = next++) < tasks.size();) {
+      try {
+        cases[t] = tasks[t]();
+        if (!cases[t]) continue;
+        const Case& c = *cases[t];
+        if (noiseOnly) {
+          std::lock_guard lock(log);
+          std::printf("noise | %-32s | %-36s | true %.3f | estimated %.3f | clean mesh %.3f\n", c.mesh.c_str(), c.noise.c_str(),
+                      trueNoiseLevel(c), estimateNoise(c.noisy).level, estimateNoise(c.clean).level);
+          continue;
+        }
+        Result& r = results[t];
+        r.c = &c;
+        r.noisy = scoreOf(c, c.noisy.positions(), "", -1);
+        r.taubin = cache.get(c, "taubin-tuned", taubinTuned);
+        r.bilateral = cache.get(c, "bilateral-tuned", bilateralTuned);
+        for (std::uint64_t seed : seeds) r.ours.push_back(ours(c, whatIf, seed, false));
+        if (paper) r.paper = ours(c, whatIf, 1, true);
+        if (!c.gcnResult.empty()) {
+          for (const Pair& p : pairs)
+            if (p.gcnResult == c.gcnResult) r.gcn = scoreOf(c, loadResultPositions(data, p, c.gcnResult), "published", -1);
+        }
+        const Verdict v = verdict(r.ours.front(), r.taubin, r.bilateral);
+        std::lock_guard lock(log);
+        std::cerr << "denoise_eval: [" << setName(c.set) << "] " << c.mesh << ", " << c.noise << ": ours " << pairOf(r.ours.front())
+                  << " (" << r.ours.front().note << ", " << fixed(r.ours.front().ms / 1000, 1) << " s), Taubin "
+                  << pairOf(r.taubin) << ", bilateral " << pairOf(r.bilateral) << (v.win ? "  won" : "  NOT WON") << "\n";
+      } catch (...) {
+        std::lock_guard lock(log);
+        if (!failure) failure = std::current_exception();
+      }
     }
-    std::cout << s.str();
-    md << s.str();
+  };
+  std::vector<std::thread> pool;
+  for (int k = 0; k < std::min<int>(jobs, std::max<size_t>(1, tasks.size())); ++k) pool.emplace_back(worker);
+  for (std::thread& t : pool) t.join();
+  if (failure) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (const std::exception& e) {
+      std::cerr << "denoise_eval: error: " << e.what() << "\n";
+      return 1;
+    }
   }
+  if (noiseOnly) return 0;
+  results.erase(std::remove_if(results.begin(), results.end(), [](const Result& r) { return r.c == nullptr; }), results.end());
+
+  std::ostringstream md;
+  md << "# Denoising evaluation\n\nRMS: one-sided point-to-surface distance from the result's vertices to the clean surface "
+        "(as MeshLab's Hausdorff filter), meshes scaled to the unit cube, ×10². Normal error: mean angle between "
+        "corresponding face normals. The split and the noises: docs/denoising.md#the-evaluation.\n\n";
+  for (Set set : {Set::Validation, Set::Tuning})
+    if (wantedSet(set)) md << report(set, results, seeds, paper);
+  std::cout << md.str();
   if (!markdownPath.empty()) {
     const fs::path tmp = markdownPath + ".tmp";
     std::ofstream(tmp) << md.str();
     fs::rename(tmp, markdownPath);
-    std::cerr << "denoise_eval: tables written to " << markdownPath << "\n";
+    std::cerr << "denoise_eval: report written to " << markdownPath << "\n";
   }
   return 0;
 }

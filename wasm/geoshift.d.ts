@@ -81,7 +81,7 @@ export interface MeshExtras {
 
 /** Parameters of each op (all optional; spatial ones in multiples of the average edge length). */
 export interface OpParams {
-  noise: { amount?: number; distribution?: 'fixed' | 'uniform' | 'gaussian'; direction?: 'random' | 'normal'; seed?: number };
+  noise: { amount?: number; distribution?: 'fixed' | 'uniform' | 'gaussian' | 'impulsive'; direction?: 'random' | 'normal'; seed?: number };
   smooth: { iterations?: number; lambda?: number; mu?: number; weights?: 'uniform' | 'fujiwara' | 'cotangent' };
   curvature: { kind?: 'abs' | 'mean' | 'gauss' | 'rms' };
   /** source: caller vertex index; radius in AEL (default: unlimited). */

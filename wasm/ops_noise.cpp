@@ -12,10 +12,11 @@ OpOutput runNoise(const OpContext& context) {
   const Params& p = context.params;
   NoiseOptions options;
   options.amount = p.number("amount", options.amount, 0, 100);
-  const std::string distribution = p.choice("distribution", "fixed", {"fixed", "uniform", "gaussian"});
-  options.distribution = distribution == "uniform"    ? NoiseDistribution::Uniform
-                         : distribution == "gaussian" ? NoiseDistribution::Gaussian
-                                                      : NoiseDistribution::Fixed;
+  const std::string distribution = p.choice("distribution", "fixed", {"fixed", "uniform", "gaussian", "impulsive"});
+  options.distribution = distribution == "uniform"     ? NoiseDistribution::Uniform
+                         : distribution == "gaussian"  ? NoiseDistribution::Gaussian
+                         : distribution == "impulsive" ? NoiseDistribution::Impulsive
+                                                       : NoiseDistribution::Fixed;
   options.direction = p.choice("direction", "random", {"random", "normal"}) == "normal" ? NoiseDirection::Normal
                                                                                         : NoiseDirection::Random;
   // Seeds beyond 2^53 would not survive the trip through a JS number.

@@ -1,17 +1,16 @@
 // The default denoiser (denoise.hpp; docs/denoising.md#the-default-pipeline).
 //
 // Candidates x(k, t): k Taubin steps, then t passes of [blurring mean shift of the face normals →
-// vertex update]. For each, Stein's unbiased risk estimate of the error along the vertex normals is
-//   SURE = Σ_i ((x_i − y_i)·N_i)² − mσ² + 2σ² div,  div ≈ Σ_i b_i ((x'_i − x_i)·N_i) / ε,
-// with y the input, N the vertex normals of y after a few Taubin steps, σ the noise level, and x'
-// the same candidate computed from y + ε b N for a random ±1 probe b (Monte-Carlo SURE, Ramani et
-// al. 2008). The candidate of least SURE is returned. Every candidate runs on both copies, so the cost is twice the passes computed.
+// vertex update]. Each is scored by the risk estimate (denoise_risk.hpp) from itself and its copy
+// computed from a probed input, so every pass is computed twice. The candidates race
+// (CandidateRace below) and the one of least risk is returned.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <random>
 #include <string>
 
 #include "denoise_detail.hpp"
+#include "denoise_risk.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geodesic.hpp"
 #include "geoshift/geometry.hpp"
@@ -39,12 +38,176 @@ void validate(const DenoiseOptions& o) {
     bad("risk normal smoothing must be in [0, 10000] steps (got " + std::to_string(o.riskNormalSmoothing) + ")");
   if (o.vertexIterations < 1 || o.vertexIterations > 10000)
     bad("vertex iterations must be in [1, 10000] (got " + std::to_string(o.vertexIterations) + ")");
+  if (o.probeSpacing < 1 || o.probeSpacing > 100) bad("probe spacing must be in [1, 100] edges (got " + std::to_string(o.probeSpacing) + ")");
+  if (!(o.normalRiskWeight >= 0) || !std::isfinite(o.normalRiskWeight))
+    bad("normal risk weight must be >= 0 (got " + std::to_string(o.normalRiskWeight) + ")");
+  if (o.taubinLadder < 0 || o.taubinLadder > 10000) bad("Taubin ladder must be in [0, 10000] steps (got " + std::to_string(o.taubinLadder) + ")");
 }
 
 // One copy of the mesh being denoised: its positions and the face normals its guard refers to.
 struct Track {
   std::vector<Vec3> positions;
   const VertexUpdateOptions* update = nullptr;  // with the reference normals of its start, shared
+};
+
+// The two operations a candidate is made of, on the caller's mesh: Taubin steps, and passes of
+// [face normal shift over the neighbourhoods → vertex update]. The mesh lends its connectivity; each
+// track's positions are swapped in and out (a copy would cost 50 bytes a vertex).
+class Passes {
+ public:
+  Passes(Mesh& work, const DenoiseOptions& o, const Progress& progress) : work_(work), o_(o) {
+    parallel_.threads = o.threads;
+    // Neighbourhoods on a smoothed support, found once.
+    progress.step(0, "support");
+    FaceNeighborhoodOptions hoodOptions = o.neighborhood;
+    hoodOptions.parallel.threads = o.threads;
+    const std::vector<Vec3> start = work.positions();
+    taubinSmooth(work, o.supportSmoothing);
+    hoods_ = faceNeighborhoods(work, hoodOptions, progress.slice(0, 0.1));
+    work.positions() = start;
+  }
+
+  size_t neighborhoodBytes() const { return hoods_.bytes(); }
+
+  // Vertex update options of a start (input or probed input): its face normals are the flip guard's
+  // reference for every candidate and pass that starts there.
+  VertexUpdateOptions updateFrom(const std::vector<Vec3>& start) {
+    VertexUpdateOptions update;
+    update.iterations = o_.vertexIterations;
+    update.flipGuard = FlipGuard::InputOrTarget;
+    update.parallel = parallel_;
+    work_.positions() = start;
+    update.referenceNormals = referenceNormalsOf(work_);
+    return update;
+  }
+
+  void presmooth(Track& t, int steps) {
+    if (steps == 0) return;
+    TaubinOptions taubin = o_.supportSmoothing;
+    taubin.iterations = steps;
+    work_.positions() = t.positions;
+    taubinSmooth(work_, taubin);
+    t.positions = work_.positions();
+  }
+
+  void pass(Track& t, double rangeBandwidth, DenoiseResult& result) {
+    work_.positions() = t.positions;
+    std::vector<Vec3> targets = shiftFaceNormals(hoods_, faceAreas(work_), faceNormals(work_), rangeBandwidth, parallel_);
+    VertexUpdateResult u = updateVertices(work_, std::move(targets), *t.update);
+    result.limitedSteps += u.limitedSteps;
+    t.positions = std::move(u.positions);
+    ++result.passesRun;
+  }
+
+ private:
+  Mesh& work_;
+  const DenoiseOptions& o_;
+  ParallelOptions parallel_;
+  FaceNeighborhoods hoods_;
+};
+
+// What candidates are ranked by: the position risk, plus the normal risk weighted by
+// normalRiskWeight, each relative to its value for the noise itself (σ² and σ² tr L / area), so
+// that the weight does not depend on the mesh's scale or resolution.
+struct Ranking {
+  double positionScale = 1, normalScale = 0;
+  double operator()(const Risk& r) const { return positionScale * r.position + normalScale * r.normal; }
+};
+
+// The candidates race in step, one pass each in turn. A candidate stops after `patience` passes that
+// did not lower its rank by 0.2% of the noise's, and, once it has run `patience` passes, as soon as
+// its best rank is kRaceMargin of the noise's above the leader's: it is unlikely to catch up, and a
+// lead smaller than that is within what one probe can tell apart anyway. The passes it would have
+// run are half the cost (docs/denoising.md#the-default-pipeline).
+class CandidateRace {
+  static constexpr double kTolerance = 0.002, kRaceMargin = 0.005;  // of the noise's rank
+
+ public:
+  CandidateRace(const DenoiseOptions& o, const RiskEstimate& risk, const Ranking& rank, DenoiseResult& result)
+      : o_(o), risk_(risk), rank_(rank), result_(result) {}
+
+  struct Run {
+    int steps;
+    double rangeBandwidth;
+    Track x, xp;
+    int t = 0, lastBest = 0;
+    double anchor = 0;  // the rank at the last pass that lowered it by more than the tolerance
+    double best = 0;
+    bool active = true;
+  };
+
+  // Scores a candidate that is not part of the race (a step of the Taubin ladder).
+  double score(int steps, const std::vector<Vec3>& x, const std::vector<Vec3>& xp) {
+    const Risk r = risk_(x, xp);
+    offer(steps, o_.rangeBandwidths.front(), 0, x, r);
+    return rank_(r);
+  }
+
+  void add(Run run) {
+    runs_.push_back(std::move(run));
+    scoreRun(runs_.back());
+  }
+
+  void run(Passes& passes, const Progress& progress) {
+    const double total = static_cast<double>(runs_.size()) * o_.maxPasses;
+    for (int done = 0;;) {
+      bool any = false;
+      for (Run& run : runs_) {
+        if (!run.active) continue;
+        progress.step(0.1 + 0.9 * std::min(1.0, done / total), "denoise passes");
+        passes.pass(run.x, run.rangeBandwidth, result_);
+        passes.pass(run.xp, run.rangeBandwidth, result_);
+        ++run.t;
+        ++done;
+        scoreRun(run);
+        if (run.t - run.lastBest >= o_.patience || run.t >= o_.maxPasses) run.active = false;
+        any = any || run.active;
+      }
+      if (!any) break;
+      double leader = runs_.front().best;
+      for (const Run& run : runs_) leader = std::min(leader, run.best);
+      for (Run& run : runs_)
+        if (run.active && run.t >= o_.patience && run.best > leader + kRaceMargin) run.active = false;
+    }
+  }
+
+  // The winner's positions (moved out) and its unbiased risk.
+  std::vector<Vec3> takeBest() { return std::move(best_); }
+  const Risk& bestRisk() const { return bestRisk_; }
+
+ private:
+  void scoreRun(Run& run) {
+    const Risk r = risk_(run.x.positions, run.xp.positions);
+    const double value = rank_(r);
+    if (run.t == 0 || value < run.anchor - kTolerance) {
+      run.anchor = value;
+      run.lastBest = run.t;
+    }
+    if (run.t == 0 || value < run.best) run.best = value;
+    offer(run.steps, run.rangeBandwidth, run.t, run.x.positions, r);
+  }
+
+  void offer(int steps, double hr, int passes, const std::vector<Vec3>& x, const Risk& r) {
+    if (o_.onCandidate) o_.onCandidate(steps, passes, x, r.positionUnbiased, r.normalUnbiased);
+    const double value = rank_(r);
+    if (best_.empty() || value < bestValue_) {
+      bestValue_ = value;
+      bestRisk_ = r;
+      best_ = x;
+      result_.presmoothingSteps = steps;
+      result_.rangeBandwidth = hr;
+      result_.passes = passes;
+    }
+  }
+
+  const DenoiseOptions& o_;
+  const RiskEstimate& risk_;
+  const Ranking& rank_;
+  DenoiseResult& result_;
+  std::vector<Run> runs_;
+  std::vector<Vec3> best_;
+  Risk bestRisk_;
+  double bestValue_ = 0;
 };
 
 }  // namespace
@@ -69,10 +232,9 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   };
   if (!(level > 0)) return finish();  // nothing to remove
   const double sigma = level * ael;
-  const int n = mesh.vertexCount();
   const std::vector<Vec3> input = mesh.positions();
-  // The passes run on `mesh` itself (below): on an exception it gets its input back. assign() into a
-  // vector of the same size does not allocate, so the restore cannot throw.
+  // The passes run on `mesh` itself: on an exception it gets its input back. assign() into a vector
+  // of the same size does not allocate, so the restore cannot throw.
   struct Restore {
     Mesh& mesh;
     const std::vector<Vec3>& input;
@@ -81,60 +243,18 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       if (armed) mesh.positions().assign(input.begin(), input.end());
     }
   } restore{mesh, input};
-  ParallelOptions parallel;
-  parallel.threads = o.threads;
 
-  // Neighbourhoods on a smoothed support, found once.
-  progress.step(0, "support");
-  FaceNeighborhoodOptions hoodOptions = o.neighborhood;
-  hoodOptions.parallel.threads = o.threads;
-  FaceNeighborhoods hoods;
-  {
-    Mesh support = mesh;
-    taubinSmooth(support, o.supportSmoothing);
-    hoods = faceNeighborhoods(support, hoodOptions, progress.slice(0, 0.1));
-  }
-  result.neighborhoodBytes = hoods.bytes();
-
-  // The passes use `mesh` for its connectivity, with each track's positions swapped in and out (a
-  // copy would cost 50 bytes a vertex); the chosen positions go back into it at the end.
-  Mesh& work = mesh;
-  auto presmooth = [&](Track& t, int steps) {
-    if (steps == 0) return;
-    TaubinOptions taubin = o.supportSmoothing;
-    taubin.iterations = steps;
-    work.positions() = t.positions;
-    taubinSmooth(work, taubin);
-    t.positions = work.positions();
-  };
-  auto pass = [&](Track& t, double rangeBandwidth) {
-    work.positions() = t.positions;
-    std::vector<Vec3> targets = shiftFaceNormals(hoods, faceAreas(work), faceNormals(work), rangeBandwidth, parallel);
-    VertexUpdateResult u = updateVertices(work, std::move(targets), *t.update);
-    result.limitedSteps += u.limitedSteps;
-    t.positions = std::move(u.positions);
-    ++result.passesRun;
-  };
-  // Vertex update options per start (input, probe), each holding its start's face normals as the
-  // flip guard's reference, shared by every candidate and pass.
-  auto updateFrom = [&](const std::vector<Vec3>& start) {
-    VertexUpdateOptions update;
-    update.iterations = o.vertexIterations;
-    update.flipGuard = FlipGuard::InputOrTarget;
-    update.parallel = parallel;
-    work.positions() = start;
-    update.referenceNormals = referenceNormalsOf(work);
-    return update;
-  };
-  const VertexUpdateOptions inputUpdate = updateFrom(input);
+  Passes passes(mesh, o, progress);
+  result.neighborhoodBytes = passes.neighborhoodBytes();
+  const VertexUpdateOptions inputUpdate = passes.updateFrom(input);
 
   if (o.fixedPasses > 0) {
     const double hr = o.rangeBandwidths.front();
     Track x{input, &inputUpdate};
-    presmooth(x, o.presmoothing.front());
+    passes.presmooth(x, o.presmoothing.front());
     for (int t = 1; t <= o.fixedPasses; ++t) {
       progress.step(0.1 + 0.9 * (t - 1) / o.fixedPasses, "denoise passes");
-      pass(x, hr);
+      passes.pass(x, hr, result);
     }
     result.presmoothingSteps = o.presmoothing.front();
     result.rangeBandwidth = hr;
@@ -144,122 +264,55 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     return finish();
   }
 
-  // The probe: ±1 per vertex with a normal, from a generator the standard specifies bit for bit.
-  // The directions the error is measured along: normals of a lightly smoothed copy of the input.
-  std::vector<Vec3> normals;
-  if (o.riskNormalSmoothing > 0) {
-    TaubinOptions taubin = o.supportSmoothing;
-    taubin.iterations = o.riskNormalSmoothing;
-    work.positions() = input;
-    taubinSmooth(work, taubin);
-    normals = vertexNormals(work);
-  } else {
-    work.positions() = input;
-    normals = vertexNormals(work);
-  }
-  const double eps = 0.01 * sigma;
-  std::vector<double> probe(n, 0);
-  int m = 0;
-  {
-    std::mt19937_64 rng(o.seed);
-    for (int v = 0; v < n; ++v) {
-      const double sign = (rng() >> 63) ? 1.0 : -1.0;
-      if (normals[v].squaredNorm() > 0) {
-        probe[v] = sign;
-        ++m;
+  RiskOptions riskOptions;
+  riskOptions.normalSmoothing = o.riskNormalSmoothing;
+  riskOptions.taubin = o.supportSmoothing;
+  riskOptions.seed = o.seed;
+  riskOptions.probeSpacing = o.probeSpacing;
+  const double strength = o.strength;
+  const RiskEstimate risk(mesh, input, sigma / strength, strength, riskOptions);
+  std::vector<Vec3> probed = risk.probedInput();
+  const VertexUpdateOptions probedUpdate = passes.updateFrom(probed);
+
+  // Ranking relative to the noise: its position risk is σ² (ranked with the strength), its normal
+  // risk that of the noisy input measured against the input itself.
+  Ranking rank;
+  rank.positionScale = 1 / (sigma * sigma);
+  if (o.normalRiskWeight > 0 && risk.noiseNormalRisk() > 0) rank.normalScale = o.normalRiskWeight / risk.noiseNormalRisk();
+  CandidateRace race(o, risk, rank, result);
+
+  // The Taubin ladder: k = 0, 1, ..., taubinLadder steps without passes, scored as they come.
+  std::vector<int> starts = o.presmoothing;
+  if (o.taubinLadder > 0) {
+    Track x{input, &inputUpdate}, xp{probed, &probedUpdate};
+    int bestK = 0;
+    double bestValue = race.score(0, x.positions, xp.positions);
+    for (int k = 1; k <= o.taubinLadder; ++k) {
+      passes.presmooth(x, 1);
+      passes.presmooth(xp, 1);
+      const double value = race.score(k, x.positions, xp.positions);
+      if (value < bestValue) {
+        bestValue = value;
+        bestK = k;
       }
     }
+    result.ladderSteps = bestK;
+    if (o.ladderStartsPasses && starts.size() > 1) starts.back() = std::max(starts.front() + 1, bestK);
   }
-  std::vector<Vec3> perturbed = input;
-  for (int v = 0; v < n; ++v) perturbed[v] += eps * probe[v] * normals[v];
-  const VertexUpdateOptions perturbedUpdate = updateFrom(perturbed);
 
-  // SURE with the noise level times the strength (what candidates are ranked by), and with the noise
-  // level alone (the unbiased estimate of the error that is reported).
-  struct Risk {
-    double ranked, unbiased;
-  };
-  const double sigma1 = sigma / o.strength;
-  auto risk = [&](const Track& x, const Track& xp) {
-    double fit = 0, div = 0;
-    for (int v = 0; v < n; ++v) {
-      if (probe[v] == 0) continue;
-      const double d = (x.positions[v] - input[v]).dot(normals[v]);
-      fit += d * d;
-      div += probe[v] * (xp.positions[v] - x.positions[v]).dot(normals[v]);
-    }
-    div /= eps;
-    const double count = std::max(1, m);
-    return Risk{(fit - m * sigma * sigma + 2 * sigma * sigma * div) / count,
-                (fit - m * sigma1 * sigma1 + 2 * sigma1 * sigma1 * div) / count};
-  };
-
-  // The candidates race in step, one pass each in turn. A candidate stops after `patience` passes
-  // that did not lower its risk by 0.2% of the noise variance (on smooth shapes the risk keeps
-  // creeping down for dozens of passes by less), and, once it has run `patience` passes, as soon as
-  // its best risk is kRaceMargin of the noise variance above the leader's: it is unlikely to catch
-  // up, and a lead smaller than that is within what one probe can tell apart anyway. The passes it
-  // would have run are half the cost (docs/denoising.md#the-default-pipeline).
-  constexpr double kRaceMargin = 0.005;
-  struct Run {
-    int steps;
-    double rangeBandwidth;
-    Track x, xp;
-    int t = 0, lastBest = 0;
-    double anchor = 0;  // the risk at the last pass that lowered it by more than the tolerance
-    double best = 0;
-    bool active = true;
-  };
-  std::vector<Vec3> best;
-  Risk bestRisk{0, 0};
-  auto score = [&](Run& run) {
-    const Risk r = risk(run.x, run.xp);
-    if (run.t == 0 || r.ranked < run.anchor - 0.002 * sigma * sigma) {
-      run.anchor = r.ranked;
-      run.lastBest = run.t;
-    }
-    if (run.t == 0 || r.ranked < run.best) run.best = r.ranked;
-    if (best.empty() || r.ranked < bestRisk.ranked) {
-      bestRisk = r;
-      best = run.x.positions;
-      result.presmoothingSteps = run.steps;
-      result.rangeBandwidth = run.rangeBandwidth;
-      result.passes = run.t;
-    }
-  };
-  std::vector<Run> runs;
-  for (int steps : o.presmoothing) {
+  for (int steps : starts) {
     for (double hr : o.rangeBandwidths) {
-      runs.push_back({steps, hr, {input, &inputUpdate}, {perturbed, &perturbedUpdate}});
-      Run& run = runs.back();
-      presmooth(run.x, steps);
-      presmooth(run.xp, steps);
-      score(run);
+      CandidateRace::Run run{steps, hr, {input, &inputUpdate}, {probed, &probedUpdate}};
+      passes.presmooth(run.x, steps);
+      passes.presmooth(run.xp, steps);
+      race.add(std::move(run));
     }
   }
-  std::vector<Vec3>().swap(perturbed);  // the probe tracks have started from it
-  const double total = static_cast<double>(runs.size()) * o.maxPasses;
-  for (int done = 0;;) {
-    bool any = false;
-    for (Run& run : runs) {
-      if (!run.active) continue;
-      progress.step(0.1 + 0.9 * std::min(1.0, done / total), "denoise passes");
-      pass(run.x, run.rangeBandwidth);
-      pass(run.xp, run.rangeBandwidth);
-      ++run.t;
-      ++done;
-      score(run);
-      if (run.t - run.lastBest >= o.patience || run.t >= o.maxPasses) run.active = false;
-      any = any || run.active;
-    }
-    if (!any) break;
-    double leader = runs.front().best;
-    for (const Run& run : runs) leader = std::min(leader, run.best);
-    for (Run& run : runs)
-      if (run.active && run.t >= o.patience && run.best > leader + kRaceMargin * sigma * sigma) run.active = false;
-  }
-  result.estimatedError = std::sqrt(std::max(0.0, bestRisk.unbiased)) / ael;
-  mesh.positions() = std::move(best);
+  std::vector<Vec3>().swap(probed);  // the probe tracks have started from it
+  race.run(passes, progress);
+  result.estimatedError = std::sqrt(std::max(0.0, race.bestRisk().positionUnbiased)) / ael;
+  result.estimatedNormalError = std::sqrt(std::max(0.0, race.bestRisk().normalUnbiased)) * 180 / 3.14159265358979323846;
+  mesh.positions() = race.takeBest();
   restore.armed = false;
   return finish();
 }

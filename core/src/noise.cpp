@@ -84,6 +84,10 @@ std::vector<Vec3> addNoise(Mesh& mesh, const NoiseOptions& options) {
     throw InputError("noise amount must be a finite number >= 0 (got " +
                      std::to_string(options.amount) + ")");
   }
+  if (options.distribution == NoiseDistribution::Impulsive &&
+      !(options.impulseFraction > 0 && options.impulseFraction <= 1)) {
+    throw InputError("noise impulse fraction must be in (0, 1] (got " + std::to_string(options.impulseFraction) + ")");
+  }
   const double scale = options.amount * averageEdgeLength(mesh);
   std::vector<Vec3> normals;
   if (options.direction == NoiseDirection::Normal) normals = vertexNormals(mesh);
@@ -93,13 +97,20 @@ std::vector<Vec3> addNoise(Mesh& mesh, const NoiseOptions& options) {
   for (int v = 0; v < mesh.vertexCount(); ++v) {
     // Isolated vertices draw nothing, so the noise on the surface does not depend on them.
     if (mesh.isIsolated(v)) continue;
-    const Vec3 dir = options.direction == NoiseDirection::Normal ? normals[v] : sampler.direction();
+    if (options.distribution == NoiseDistribution::Impulsive && !(sampler.uniform() < options.impulseFraction)) continue;
+    const bool alongNormal = options.direction == NoiseDirection::Normal;
+    const Vec3 dir = alongNormal ? normals[v] : sampler.direction();
     double magnitude = scale;
     switch (options.distribution) {
       case NoiseDistribution::Fixed: break;
       case NoiseDistribution::Uniform: magnitude = scale * sampler.uniform(); break;
-      case NoiseDistribution::Gaussian: magnitude = scale * sampler.normal(); break;
+      case NoiseDistribution::Gaussian:
+      case NoiseDistribution::Impulsive: magnitude = scale * sampler.normal(); break;
     }
+    // A magnitude that is never negative along the normal needs a sign of its own.
+    const bool unsignedMagnitude =
+        options.distribution == NoiseDistribution::Fixed || options.distribution == NoiseDistribution::Uniform;
+    if (alongNormal && unsignedMagnitude && sampler.uniform() < 0.5) magnitude = -magnitude;
     displacement[v] = magnitude * dir;
     mesh.position(v) += displacement[v];
   }

@@ -7,6 +7,7 @@
 //  - Paper: the paper's §4.1, passes of [mean shift of the vertex normals with the kernel of eq. 8 →
 //    face normals → vertex update] on a Taubin-smoothed support, kept to reproduce its figures.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "geoshift/face_normal_shift.hpp"
@@ -79,7 +80,21 @@ struct DenoiseOptions {
   // about the noise's angle). More steps than the lightest pre-smoothing candidate, so that the
   // directions do not share that candidate's noise (docs/denoising.md#the-default-pipeline).
   int riskNormalSmoothing = 6;
+  // The probe of the risk estimate: 1 probes every vertex; d > 1 only vertices at least d edges apart,
+  // whose divergence is scaled up to all (docs/denoising.md#the-risk-estimate).
+  int probeSpacing = 1;
+  // Candidates are ranked by their position risk plus this weight times their normal risk (the
+  // Dirichlet energy of the error: first-order face normal error), each relative to the noise's own.
+  double normalRiskWeight = 0;
+  // > 0: candidates of 0, 1, ..., taubinLadder Taubin steps and no pass are scored too (cheap).
+  int taubinLadder = 0;
+  // With the ladder: the last pre-smoothing candidate becomes the ladder's best step count.
+  bool ladderStartsPasses = false;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
+  // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risks
+  // (position: mean squared error along the normals; normal: rad²): for evaluations and diagnostics.
+  std::function<void(int steps, int passes, const std::vector<Vec3>& positions, double positionRisk, double normalRisk)>
+      onCandidate;
 
   // --- Paper preset ---
   PaperDenoiseOptions paper;
@@ -101,6 +116,8 @@ struct DenoiseResult {
   int passes = 0;               // chosen
   int passesRun = 0;            // computed, all candidates
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL
+  double estimatedNormalError = 0;  // its normal risk: RMS face normal error to first order, degrees
+  int ladderSteps = 0;          // the Taubin ladder's best step count (taubinLadder > 0)
   size_t neighborhoodBytes = 0;
   // Paper preset
   double meanIterations = 0;     // of the mean shift, per vertex per pass

@@ -13,7 +13,10 @@ enum class NoiseDistribution {
   Fixed,     // magnitude exactly amount * AEL
   Uniform,   // magnitude uniform in [0, amount * AEL]
   Gaussian,  // signed magnitude N(0, (amount * AEL)^2)
+  Impulsive, // a fraction `impulseFraction` of the vertices, each N(0, (amount * AEL)^2); the rest stay
 };
+// Normal: along the vertex normal, with a random sign for Fixed and Uniform magnitudes (an unsigned
+// magnitude would only inflate the mesh).
 enum class NoiseDirection { Random, Normal };
 
 struct NoiseOptions {
@@ -21,6 +24,7 @@ struct NoiseOptions {
   NoiseDistribution distribution = NoiseDistribution::Fixed;
   NoiseDirection direction = NoiseDirection::Random;
   std::uint64_t seed = 1;
+  double impulseFraction = 0.1;  // Impulsive: the share of vertices moved, in (0, 1]
 };
 
 // Displaces every non-isolated vertex in place; returns the displacement per vertex.

@@ -1,0 +1,236 @@
+#include "catalogue.hpp"
+
+#include <algorithm>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "geoshift/error.hpp"
+#include "geoshift/geometry.hpp"
+#include "geoshift/io.hpp"
+#include "geoshift/shapes.hpp"
+#include "geoshift/terrain.hpp"
+
+namespace fs = std::filesystem;
+
+namespace geoshift::eval {
+
+const char* setName(Set s) { return s == Set::Tuning ? "tuning" : "validation"; }
+
+std::uint64_t fnv1a(const std::string& s) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+namespace {
+
+Mesh fromFile(const fs::path& path) { return buildMesh(worldSoup(readDocument(path.string()))).mesh; }
+
+Mesh fromTerrain(const fs::path& path) { return buildMesh(readTerrain(path.string()).soup()).mesh; }
+
+}  // namespace
+
+std::vector<MeshEntry> cleanMeshes(const fs::path& data) {
+  std::vector<MeshEntry> out;
+  auto procedural = [&](std::string name, std::string family, std::string category, bool seen,
+                        std::function<TriangleSoup()> make) {
+    out.push_back({name + " (procedural)", family, category, seen, [make] { return buildMesh(make()).mesh; }});
+  };
+  auto file = [&](std::string name, std::string family, std::string category, bool seen, std::string rel,
+                  bool terrain = false) {
+    const fs::path p = data / rel;
+    if (!fs::exists(p)) {
+      std::cerr << "denoise_eval: left out " << name << ": " << p.string() << " not found (../shared/data absent)\n";
+      return;
+    }
+    out.push_back({name, family, category, seen, [p, terrain] { return terrain ? fromTerrain(p) : fromFile(p); }});
+  };
+  const std::string g = "guided_denoising_bldeng/models/", o = "odedstein_meshes/";
+  // Seen: the scoreboard that chose the defaults until 2026-11-26 (its 13 clean meshes and 11 pairs).
+  procedural("CAD block", "cad block", "CAD", true, [] { return shapes::box(40, 28, 20, Vec3(1.0, 0.7, 0.5)); });
+  procedural("Sphere", "sphere", "smooth", true, [] { return shapes::icosphere(5); });
+  procedural("Torus", "torus", "smooth", true, [] { return shapes::torus(120, 40); });
+  procedural("Double torus", "double torus", "smooth", true, [] { return shapes::doubleTorus(32); });
+  file("Fandisk", "fandisk", "CAD", true, g + "Fandisk0.3/Original.obj");
+  file("Star", "star", "CAD", true, g + "compareJustin/trim-star_rescaled.obj");
+  file("Block", "block", "CAD", true, g + "Block0.4/Original.obj");
+  file("SharpSphere", "sharpsphere", "CAD", true, g + "SharpSphere0.3/Original.obj");
+  file("Twelve", "twelve", "CAD", true, g + "Twelve0.5Impulsive/Original.obj");
+  file("Nicolo", "nicolo", "sculpture", true, g + "Nicolo0.2/Original.obj");
+  file("Fertility", "fertility", "sculpture", true, "gcn_denoiser/models/fertility.obj");
+  file("Bunny", "bunny", "scan", true, g + "Bunny0.2/Original.obj");
+  file("Julius", "julius", "sculpture", true, g + "Julius0.2/Original.obj");
+  // The same objects as seen families, other meshes of them: tuning too.
+  file("Bunny (3k)", "bunny", "scan", true, o + "bunny/bunny.obj");
+  file("Torus (2k)", "torus", "smooth", true, o + "torus/torus.obj");
+
+  // New since 2026-11-26: split by the rule.
+  file("Sword", "sword", "CAD", false, o + "sword/sword.obj");
+  procedural("Heat sink", "heat sink", "CAD", false, [] { return shapes::heatSink(); });
+  procedural("Finned rotor", "finned rotor", "CAD", false, [] { return shapes::finnedRotor(); });
+  file("Boot", "boot", "sculpture", false, o + "boot/boot.obj");
+  file("Demosthenes", "demosthenes", "sculpture", false, o + "demosthenes/demosthenes-low-res.obj");
+  file("Falcon statue", "falconstatue", "sculpture", false, o + "falconstatue/falconstatue.obj");
+  file("Goat head", "goathead", "sculpture", false, o + "goathead/goathead.obj");
+  file("Lion statue", "lionstatue", "sculpture", false, o + "lionstatue/lionstatue.obj");
+  file("Chinese dragon", "chinesedragon", "sculpture", false, "cgal_debian_libcgal_demo/data/meshes/ChineseDragon-10kv.off");
+  file("Mushroom", "mushroom", "sculpture", false, o + "mushroom/mushroom.obj");
+  file("Pizza", "pizza", "sculpture", false, o + "pizza/pizza.obj");
+  file("Stuffed toy", "stuffedtoy", "sculpture", false, o + "stuffedtoy/stuffedtoy.obj");
+  file("Armadillo (15k)", "armadillo", "animal", false, o + "armadillo/armadillo.obj");
+  file("Armadillo (26k)", "armadillo", "animal", false, "cgal_debian_libcgal_demo/data/meshes/armadillo.off");
+  file("Fish", "fish", "animal", false, o + "fish/fish.obj");
+  file("Fish (1k)", "fish", "animal", false, o + "fish/fish_low_resolution.obj");
+  file("Koala", "koala", "animal", false, o + "koala/koala.obj");
+  file("Koala (4k)", "koala", "animal", false, o + "koala/koala_low_resolution.obj");
+  file("Penguin", "penguin", "animal", false, o + "penguin/penguin.obj");
+  file("Spot", "spot", "animal", false, o + "spot/spot.obj");
+  file("Spot (1k)", "spot", "animal", false, o + "spot/spot_low_resolution.obj");
+  file("Springer", "springer", "animal", false, o + "springer/springer.obj");
+  file("Plane", "plane", "thin sheet", false, o + "plane/plane.obj");
+  file("Plane with holes", "plane", "thin sheet", false, o + "plane/plane_holes.obj");
+  procedural("Turbine blade", "turbine blade", "thin sheet", false, [] { return shapes::turbineBlade(); });
+  procedural("Thin bowl", "thin bowl", "thin sheet", false, [] { return shapes::thinBowl(); });
+  procedural("Trefoil knot tube", "trefoil knot", "tube", false, [] { return shapes::torusKnot(2, 3); });
+  procedural("(2, 5) knot tube", "2-5 knot", "tube", false, [] { return shapes::torusKnot(2, 5, 0.2); });
+  file("Mountain", "mountain", "open or terrain", false, o + "mountain/mountain.obj");
+  file("B9 urban terrain", "b9", "open or terrain", false, "cgal_debian_libcgal_demo/data/meshes/b9_mesh.off");
+  file("Olinda DEM", "olinda", "open or terrain", false, "dem_debian_r_packages/stars/olinda_dem_utm25s.tif", true);
+  file("Elevation DEM (terra)", "terra elev", "open or terrain", false, "dem_debian_r_packages/terra/elev.tif", true);
+  procedural("Fractal terrain", "fractal terrain", "open or terrain", false, [] {
+    TerrainOptions t;
+    t.size = 129;
+    t.seed = 7;
+    return proceduralTerrain(t).soup();
+  });
+  procedural("Perforated sheet", "perforated sheet", "open or terrain", false, [] { return shapes::perforatedSheet(); });
+  return out;
+}
+
+std::vector<std::pair<std::string, Set>> splitFamilies(const std::vector<MeshEntry>& meshes) {
+  std::map<std::string, std::vector<std::string>> newByCategory;
+  std::vector<std::pair<std::string, Set>> out;
+  auto known = [&](const std::string& family) {
+    return std::any_of(out.begin(), out.end(), [&](const auto& e) { return e.first == family; });
+  };
+  for (const MeshEntry& m : meshes) {
+    if (known(m.family)) continue;
+    if (m.seen) {
+      out.push_back({m.family, Set::Tuning});
+      continue;
+    }
+    auto& list = newByCategory[m.category];
+    if (std::find(list.begin(), list.end(), m.family) == list.end()) list.push_back(m.family);
+  }
+  for (auto& [category, families] : newByCategory) {
+    std::sort(families.begin(), families.end(),
+              [](const std::string& a, const std::string& b) { return fnv1a(a) < fnv1a(b); });
+    for (size_t i = 0; i < families.size(); ++i) out.push_back({families[i], i % 2 == 0 ? Set::Validation : Set::Tuning});
+  }
+  return out;
+}
+
+std::vector<NoiseSpec> noisesFor(const std::string& meshName) {
+  const double levels[] = {0.2, 0.3, 0.5, 0.7};
+  auto spec = [](NoiseDistribution d, double amount, NoiseDirection dir) {
+    NoiseSpec s;
+    s.options.distribution = d;
+    s.options.amount = amount;
+    s.options.direction = dir;
+    s.options.seed = 1;
+    std::ostringstream label;
+    label << (d == NoiseDistribution::Fixed       ? "fixed "
+              : d == NoiseDistribution::Uniform   ? "uniform [0, "
+              : d == NoiseDistribution::Gaussian  ? "gaussian "
+                                                  : "impulsive ")
+          << amount << (d == NoiseDistribution::Uniform ? "]" : "") << " AEL"
+          << (dir == NoiseDirection::Normal ? " along normals" : " random dir.");
+    s.label = label.str();
+    return s;
+  };
+  const std::uint64_t hg = fnv1a(meshName + "/gaussian"), hi = fnv1a(meshName + "/impulsive");
+  return {
+      spec(NoiseDistribution::Fixed, 0.5, NoiseDirection::Random),
+      spec(NoiseDistribution::Uniform, 0.5, NoiseDirection::Random),
+      spec(NoiseDistribution::Gaussian, levels[hg % 4], (hg >> 8) % 2 ? NoiseDirection::Normal : NoiseDirection::Random),
+      spec(NoiseDistribution::Impulsive, levels[hi % 4], (hi >> 8) % 2 ? NoiseDirection::Normal : NoiseDirection::Random),
+  };
+}
+
+std::vector<Pair> groundTruthPairs() {
+  const std::string g = "guided_denoising_bldeng/models/", n = "gcn_denoiser/models/";
+  return {
+      {"Fandisk 0.3", "fandisk", g + "Fandisk0.3/Original.obj", g + "Fandisk0.3/Noisy.obj", ""},
+      {"Fandisk 0.7", "fandisk", g + "Fandisk0.3/Original.obj", g + "Fandisk0.7/Noisy.obj", ""},
+      {"Star (Solomon 2014)", "star", g + "compareJustin/trim-star_rescaled.obj", g + "compareJustin/trim-star_n0.5_rescaled.obj", ""},
+      {"Block 0.4", "block", g + "Block0.4/Original.obj", g + "Block0.4/Noisy.obj", ""},
+      {"SharpSphere 0.3", "sharpsphere", g + "SharpSphere0.3/Original.obj", g + "SharpSphere0.3/Noisy.obj", ""},
+      {"Twelve 0.5 impulsive", "twelve", g + "Twelve0.5Impulsive/Original.obj", g + "Twelve0.5Impulsive/Noisy.obj", ""},
+      {"Nicolo 0.2", "nicolo", g + "Nicolo0.2/Original.obj", g + "Nicolo0.2/Noisy.obj", ""},
+      {"Bunny 0.2", "bunny", g + "Bunny0.2/Original.obj", g + "Bunny0.2/Noisy.obj", ""},
+      {"Julius 0.2", "julius", g + "Julius0.2/Original.obj", g + "Julius0.2/Noisy.obj", ""},
+      {"Fandisk (GCN, Gaussian)", "fandisk", n + "fandisk.obj", n + "fandisk_gaus_n6_noisy.obj", n + "fandisk_gaus_n6_denoised.obj"},
+      {"Fertility (GCN, Gaussian)", "fertility", n + "fertility.obj", n + "fertility_gaus_n3.obj", n + "fertility_gaus_n3_denoised.obj"},
+  };
+}
+
+namespace {
+
+// A file of the pair's vertex order mapped onto the clean mesh's welded vertices under `s`.
+std::vector<Vec3> mapped(const MeshBuild& b, const Similarity& s, const TriangleSoup& soup) {
+  std::vector<Vec3> out = b.mesh.positions();
+  std::vector<char> set(b.mesh.vertexCount(), 0);
+  for (size_t i = 0; i < soup.positions.size(); ++i) {
+    const int v = b.vertexOf[i];
+    if (set[v]) continue;  // welded copies: the first caller vertex stands for all
+    set[v] = 1;
+    out[v] = s.apply(soup.positions[i]);
+  }
+  return out;
+}
+
+}  // namespace
+
+bool loadPair(const fs::path& data, const Pair& p, Case& c) {
+  const fs::path cleanPath = data / p.clean, noisyPath = data / p.noisy;
+  if (!fs::exists(cleanPath) || !fs::exists(noisyPath)) {
+    std::cerr << "denoise_eval: left out pair " << p.name << ": files not found under " << data.string() << "\n";
+    return false;
+  }
+  const TriangleSoup cleanSoup = worldSoup(readDocument(cleanPath.string()));
+  const TriangleSoup noisySoup = worldSoup(readDocument(noisyPath.string()));
+  if (cleanSoup.positions.size() != noisySoup.positions.size()) {
+    std::cerr << "denoise_eval: left out pair " << p.name << ": vertex counts differ\n";
+    return false;
+  }
+  const MeshBuild b = buildMesh(cleanSoup);
+  c.mesh = p.name + " (pair)";
+  c.noise = "the pair's own noise";
+  c.family = p.family;
+  c.category = "ground-truth pair";
+  c.clean = b.mesh;
+  c.noisy = b.mesh;
+  const Similarity s = normalizeToUnitCube(c.clean);
+  c.noisy.positions() = mapped(b, s, noisySoup);
+  c.gcnResult = p.gcnResult;
+  return true;
+}
+
+std::vector<Vec3> loadResultPositions(const fs::path& data, const Pair& p, const std::string& file) {
+  const TriangleSoup cleanSoup = worldSoup(readDocument((data / p.clean).string()));
+  const TriangleSoup result = worldSoup(readDocument((data / file).string()));
+  if (result.positions.size() != cleanSoup.positions.size()) {
+    throw InputError(file + ": " + std::to_string(result.positions.size()) + " vertices, the pair's clean mesh has " +
+                     std::to_string(cleanSoup.positions.size()));
+  }
+  const MeshBuild b = buildMesh(cleanSoup);
+  Mesh scaled = b.mesh;
+  const Similarity s = normalizeToUnitCube(scaled);
+  return mapped(b, s, result);
+}
+
+}  // namespace geoshift::eval

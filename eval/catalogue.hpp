@@ -1,0 +1,72 @@
+#pragma once
+// The denoising evaluation's cases (docs/denoising.md#the-evaluation): clean meshes grouped in
+// families, the rule that splits the families into a tuning set and a validation set, the noise
+// each mesh gets, and the ground-truth pairs.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "geoshift/mesh.hpp"
+#include "geoshift/noise.hpp"
+
+namespace geoshift::eval {
+
+enum class Set { Tuning, Validation };
+const char* setName(Set s);
+
+// A clean mesh. Meshes of one family (the same object at two resolutions, with and without holes)
+// always fall in the same set.
+struct MeshEntry {
+  std::string name;      // as printed
+  std::string family;    // the split's key
+  std::string category;  // what kind of surface (the split is balanced within each)
+  bool seen = false;     // played a part in choosing earlier defaults: tuning set, whatever the hash
+  std::function<Mesh()> load;  // the clean mesh, any scale
+};
+
+// The noise of one synthetic case.
+struct NoiseSpec {
+  std::string label;  // e.g. "gaussian 0.3 AEL along normals"
+  NoiseOptions options;
+};
+
+// A case: a clean mesh and a noisy copy on the same connectivity, both scaled to the unit cube.
+struct Case {
+  std::string mesh, noise, family, category;
+  Set set = Set::Tuning;
+  Mesh clean, noisy;
+  std::string gcnResult;  // for the GCN-Denoiser pairs: its published result file, else empty
+};
+
+// FNV-1a, 64 bits, of the bytes of `s`: the split's hash (fixed by its definition, not by a library).
+std::uint64_t fnv1a(const std::string& s);
+
+// Every clean mesh of the catalogue; files missing under `data` are left out with a note on stderr.
+std::vector<MeshEntry> cleanMeshes(const std::filesystem::path& data);
+
+// The split, decided by names alone before any result was seen: families already used to choose
+// earlier defaults go to tuning; within each category the other families, ordered by fnv1a of the
+// family name, alternate validation, tuning, validation, ...
+std::vector<std::pair<std::string, Set>> splitFamilies(const std::vector<MeshEntry>& meshes);
+
+// The synthetic noises of a mesh: the paper's two readings of 0.5 AEL in random directions (fixed
+// and uniform magnitude), Gaussian and impulsive noise at a level and in a direction picked by the
+// hash of the mesh's name and the kind.
+std::vector<NoiseSpec> noisesFor(const std::string& meshName);
+
+struct Pair {
+  std::string name, family, clean, noisy, gcnResult;
+};
+std::vector<Pair> groundTruthPairs();
+
+// The noisy file of a pair on the clean file's connectivity (the pairs share face lists and vertex
+// order), both under the clean mesh's unit-cube transform. False (and a note) when files are missing.
+bool loadPair(const std::filesystem::path& data, const Pair& p, Case& c);
+
+// Positions of `file` (same vertex order as the pair's clean file) under the case's transform, as
+// loadPair maps the noisy file: for results published by other methods.
+std::vector<Vec3> loadResultPositions(const std::filesystem::path& data, const Pair& p, const std::string& file);
+
+}  // namespace geoshift::eval
