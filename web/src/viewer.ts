@@ -22,6 +22,7 @@ import {
   type Object3D,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { framingPoints, isFlat, tightFrame } from './framing';
 import { materialFor, type ViewMode } from './materials';
 
 export interface ViewerModel {
@@ -47,10 +48,6 @@ const VIEW_DIRECTION = new Vector3(0.35, 0.3, 1).normalize();
 // thin strip at a grazing angle (issue 30): 50° above the horizon.
 const FLAT_VIEW_DIRECTION = new Vector3(0.35 * Math.cos((50 * Math.PI) / 180), Math.sin((50 * Math.PI) / 180), Math.cos((50 * Math.PI) / 180)).normalize();
 const CAMERA_UP = new Vector3(0, 1, 0);
-/** Share of the narrower side of the view the framed model spans. */
-const FILL = 0.9;
-/** Vertices looked at when framing (every k-th beyond this many). */
-const FRAMING_SAMPLES = 20_000;
 
 export class Viewer {
   readonly canvas: HTMLCanvasElement;
@@ -193,21 +190,21 @@ export class Viewer {
 
   /**
    * Frames the whole model: seen from the default direction (from higher up for a flat model),
-   * centred, its vertices spanning FILL of the narrower side of the view.
+   * centred, its vertices spanning most of the narrower side of the view (framing.ts).
    */
   fitToView(): void {
     if (!this.model) return;
     const sphere = this.boundingSphere(this.model);
     const radius = Math.max(sphere.radius, 1e-6);
-    const points = this.framingPoints(this.model);
+    const points = framingPoints(this.model.root, this.model.meshes);
     const toUp = new Quaternion().setFromUnitVectors(CAMERA_UP, this.up);
-    const direction = (this.isFlat(points) ? FLAT_VIEW_DIRECTION : VIEW_DIRECTION).clone().applyQuaternion(toUp);
+    const direction = (isFlat(points, this.up) ? FLAT_VIEW_DIRECTION : VIEW_DIRECTION).clone().applyQuaternion(toUp);
     if (this.front < 0) direction.applyAxisAngle(this.up, Math.PI);
     // Motion left over from a drag (damping) would carry the camera away from the new framing.
     this.controls.enableDamping = false;
     this.controls.update();
     this.controls.enableDamping = true;
-    const { target, distance } = this.tightFrame(points, sphere.center, direction);
+    const { target, distance } = tightFrame(points, sphere.center, direction, this.up, this.camera.fov, this.camera.aspect);
     this.camera.up.copy(this.up);
     this.camera.position.copy(target).addScaledVector(direction, distance);
     this.camera.updateProjectionMatrix();
@@ -217,74 +214,6 @@ export class Viewer {
     this.controls.update();
     this.framed = true;
     this.requestRender();
-  }
-
-  /** World positions of (a sample of) the model's vertices. */
-  private framingPoints(model: ViewerModel): Vector3[] {
-    model.root.updateMatrixWorld(true);
-    let total = 0;
-    for (const mesh of model.meshes) total += mesh.geometry.getAttribute('position').count;
-    const stride = Math.max(1, Math.ceil(total / FRAMING_SAMPLES));
-    const points: Vector3[] = [];
-    for (const mesh of model.meshes) {
-      const position = mesh.geometry.getAttribute('position');
-      for (let i = 0; i < position.count; i += stride) points.push(new Vector3().fromBufferAttribute(position, i).applyMatrix4(mesh.matrixWorld));
-    }
-    return points;
-  }
-
-  /** Thin along the up axis compared with both other sides (a terrain, a relief, a plate). */
-  private isFlat(points: Vector3[]): boolean {
-    const toFrame = new Quaternion().setFromUnitVectors(this.up, CAMERA_UP);
-    const min = new Vector3(Infinity, Infinity, Infinity);
-    const max = new Vector3(-Infinity, -Infinity, -Infinity);
-    const p = new Vector3();
-    for (const point of points) {
-      p.copy(point).applyQuaternion(toFrame);
-      min.min(p);
-      max.max(p);
-    }
-    const size = max.sub(min);
-    return size.y < 0.3 * Math.min(size.x, size.z);
-  }
-
-  /**
-   * Where to look from `direction` so that every point is in view with the given fill: the camera
-   * distance at which the widest point touches the narrower side, then the target moved so that
-   * the points' projection is centred.
-   */
-  private tightFrame(points: Vector3[], centre: Vector3, direction: Vector3): { target: Vector3; distance: number } {
-    const forward = direction.clone().negate();
-    const right = new Vector3().crossVectors(forward, this.up).normalize();
-    const up = new Vector3().crossVectors(right, forward).normalize();
-    const tanV = Math.tan((this.camera.fov * Math.PI) / 360) * FILL;
-    const tanH = tanV * this.camera.aspect;
-    const target = centre.clone();
-    let distance = 0;
-    const d = new Vector3();
-    for (let pass = 0; pass < 2; pass++) {
-      // Camera distance: each point p, at depth D - p·direction, needs |p·right| <= tanH·depth and
-      // |p·up| <= tanV·depth.
-      distance = 0;
-      for (const point of points) {
-        d.subVectors(point, target);
-        const along = d.dot(direction);
-        distance = Math.max(distance, along + Math.abs(d.dot(right)) / tanH, along + Math.abs(d.dot(up)) / tanV);
-      }
-      if (pass === 1 || points.length === 0) break;
-      // Centre the projection: shift the target by the mid-point of the extreme view angles.
-      let loX = Infinity, hiX = -Infinity, loY = Infinity, hiY = -Infinity;
-      for (const point of points) {
-        d.subVectors(point, target);
-        const depth = Math.max(distance - d.dot(direction), 1e-9);
-        loX = Math.min(loX, d.dot(right) / depth);
-        hiX = Math.max(hiX, d.dot(right) / depth);
-        loY = Math.min(loY, d.dot(up) / depth);
-        hiY = Math.max(hiY, d.dot(up) / depth);
-      }
-      target.addScaledVector(right, ((loX + hiX) / 2) * distance).addScaledVector(up, ((loY + hiY) / 2) * distance);
-    }
-    return { target, distance: Math.max(distance, 1e-6) };
   }
 
   /** The mesh and the nearest corner of the triangle under a point of the canvas, if any. */
