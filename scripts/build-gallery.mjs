@@ -1,21 +1,23 @@
 // Builds the gallery's meshes (web/public/gallery/) from the public data sets they come from, small
-// enough to ship: positions quantized to 16 bits (KHR_mesh_quantization), colors to 8 bits, the
-// large terrain simplified with meshoptimizer, every buffer compressed (EXT_meshopt_compression).
-// Vertex order is kept, so a noisy mesh and its clean original still match vertex for vertex.
+// enough to ship: positions quantized to 16 bits (KHR_mesh_quantization) unless a filter's
+// parameters are in the file's own units, colors to 8 bits, the large terrain simplified with
+// meshoptimizer, every buffer compressed (EXT_meshopt_compression). A noisy mesh and its clean
+// original get the same vertex order, so they still match vertex for vertex.
 //
 //   node scripts/build-gallery.mjs DATA_DIR [GEOSHIFT_CLI]
 //
-// DATA_DIR holds the sources named in web/public/gallery/LICENSE.md (gcn_denoiser, pdal_testdata,
-// cgal_debian_libcgal_demo); GEOSHIFT_CLI (default build/native-release/cli/geoshift) turns the
-// LiDAR point sets into terrain meshes. Only data under licenses that allow shipping is used.
-import { execFileSync } from 'node:child_process';
-import { mkdirSync, mkdtempSync, readFileSync, statSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+// DATA_DIR holds the sources named in scripts/gallery-sources.mjs (gcn_denoiser, pdal_testdata);
+// GEOSHIFT_CLI (default build/native-release/cli/geoshift) makes the noisy CAD part and turns the
+// LiDAR points into a terrain mesh, as the core does for any user. Only data under licenses that
+// allow shipping is used (web/public/gallery/LICENSE.md). tests/e2e/gallery-files.test.mjs checks
+// the files against what the core makes from the same sources.
+import { mkdirSync, statSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Document, NodeIO } from '@gltf-transform/core';
 import { EXTMeshoptCompression, KHRMeshQuantization } from '@gltf-transform/extensions';
 import { MeshoptDecoder, MeshoptEncoder, MeshoptSimplifier } from 'meshoptimizer';
+import { coreMesh, GALLERY_SOURCES } from './gallery-sources.mjs';
 
 const [dataDir, cli = fileURLToPath(new URL('../build/native-release/cli/geoshift', import.meta.url))] = process.argv.slice(2);
 if (!dataDir) {
@@ -29,21 +31,6 @@ await Promise.all([MeshoptEncoder.ready, MeshoptDecoder.ready, MeshoptSimplifier
 const io = new NodeIO()
   .registerExtensions([EXTMeshoptCompression, KHRMeshQuantization])
   .registerDependencies({ 'meshopt.encoder': MeshoptEncoder, 'meshopt.decoder': MeshoptDecoder });
-
-/** Positions and triangles of an OBJ (v and f lines; polygons fanned). */
-function readObj(path) {
-  const positions = [];
-  const indices = [];
-  for (const line of readFileSync(path, 'utf8').split('\n')) {
-    const t = line.trim().split(/\s+/);
-    if (t[0] === 'v') positions.push(+t[1], +t[2], +t[3]);
-    else if (t[0] === 'f') {
-      const v = t.slice(1).map((s) => parseInt(s.split('/')[0], 10) - 1);
-      for (let k = 1; k + 1 < v.length; k++) indices.push(v[0], v[k], v[k + 1]);
-    }
-  }
-  return { positions: Float32Array.from(positions), indices: Uint32Array.from(indices) };
-}
 
 /** The box the quantization grid spans: centre and half of its largest side (uniform scale). */
 function boxOf(...arrays) {
@@ -69,14 +56,19 @@ function quantize(positions, { centre, half }) {
 /**
  * One mesh in one node. `matrix` (column-major 4×4) places the mesh's own coordinates, before the
  * quantization's translation and scale; `scalars` are one-number attributes written as `_NAME`.
+ * Unquantized, the positions stay floats and the buffers uncompressed (meshopt's float filters
+ * would round them).
  */
-async function writeMesh(name, { positions, indices, colors, scalars = {}, box = boxOf(positions), matrix }) {
+async function writeMesh(name, { positions, indices, colors, scalars = {}, box = boxOf(positions), matrix, quantized = true }) {
   const doc = new Document();
-  doc.createExtension(KHRMeshQuantization).setRequired(true);
-  doc.createExtension(EXTMeshoptCompression).setRequired(true).setEncoderOptions({ method: EXTMeshoptCompression.EncoderMethod.QUANTIZE });
+  if (quantized) {
+    doc.createExtension(KHRMeshQuantization).setRequired(true);
+    doc.createExtension(EXTMeshoptCompression).setRequired(true).setEncoderOptions({ method: EXTMeshoptCompression.EncoderMethod.QUANTIZE });
+  }
   const buffer = doc.createBuffer();
   const prim = doc.createPrimitive();
-  prim.setAttribute('POSITION', doc.createAccessor().setType('VEC3').setArray(quantize(positions, box)).setNormalized(true).setBuffer(buffer));
+  const position = doc.createAccessor().setType('VEC3').setBuffer(buffer);
+  prim.setAttribute('POSITION', quantized ? position.setArray(quantize(positions, box)).setNormalized(true) : position.setArray(Float32Array.from(positions)));
   const vertexCount = positions.length / 3;
   prim.setIndices(doc.createAccessor().setType('SCALAR').setArray(vertexCount < 65536 ? Uint16Array.from(indices) : Uint32Array.from(indices)).setBuffer(buffer));
   if (colors) {
@@ -87,8 +79,10 @@ async function writeMesh(name, { positions, indices, colors, scalars = {}, box =
   const mesh = doc.createMesh(name).addPrimitive(prim);
   // The dequantization (translation + uniform scale) comes after the file's own placement.
   const s = box.half;
-  const dequantize = [s, 0, 0, 0, 0, s, 0, 0, 0, 0, s, 0, box.centre[0], box.centre[1], box.centre[2], 1];
-  const node = doc.createNode(name).setMesh(mesh).setMatrix(matrix ? multiply(matrix, dequantize) : dequantize);
+  const dequantize = quantized ? [s, 0, 0, 0, 0, s, 0, 0, 0, 0, s, 0, box.centre[0], box.centre[1], box.centre[2], 1] : null;
+  const placement = matrix && dequantize ? multiply(matrix, dequantize) : (matrix ?? dequantize);
+  const node = doc.createNode(name).setMesh(mesh);
+  if (placement) node.setMatrix(placement);
   doc.createScene().addChild(node);
   doc.getRoot().getAsset().generator = 'geoshift scripts/build-gallery.mjs';
   const path = join(outDir, `${name}.glb`);
@@ -100,41 +94,6 @@ function multiply(a, b) {
   const out = new Array(16).fill(0);
   for (let c = 0; c < 4; c++) for (let r = 0; r < 4; r++) for (let k = 0; k < 4; k++) out[c * 4 + r] += a[k * 4 + r] * b[c * 4 + k];
   return out;
-}
-
-/** A terrain from `geoshift terrain`, optionally simplified to about `targetVertices`. */
-async function terrainFromCli(input, extraArgs, targetVertices) {
-  const tmp = mkdtempSync(join(tmpdir(), 'geoshift-gallery-'));
-  const glb = join(tmp, 'terrain.glb');
-  execFileSync(cli, ['terrain', input, '-o', glb, ...extraArgs], { stdio: ['ignore', 'ignore', 'inherit'] });
-  const doc = await io.read(glb);
-  const node = doc.getRoot().listNodes().find((n) => n.getMesh());
-  const prim = node.getMesh().listPrimitives()[0];
-  let positions = Float32Array.from(prim.getAttribute('POSITION').getArray());
-  let indices = Uint32Array.from(prim.getIndices().getArray());
-  const attribute = (key) => prim.getAttribute(key) && Float32Array.from(prim.getAttribute(key).getArray());
-  let colors = attribute('COLOR_0');
-  const scalars = {};
-  for (const key of prim.listSemantics()) if (key.startsWith('_')) scalars[key] = attribute(key);
-  const vertexCount = positions.length / 3;
-  if (targetVertices && vertexCount > targetVertices) {
-    // About two triangles per vertex on a terrain; the simplifier keeps a subset of the vertices,
-    // so attribute values (classes included) stay values that were measured.
-    const [simplified] = MeshoptSimplifier.simplify(indices, positions, 3, Math.floor((2 * targetVertices * 3) / 3) * 3, 0.01, ['LockBorder']);
-    const used = new Int32Array(vertexCount).fill(-1);
-    let next = 0;
-    for (const v of simplified) if (used[v] < 0) used[v] = next++;
-    const gather = (array, dim) => {
-      const out = new Float32Array(next * dim);
-      for (let v = 0; v < vertexCount; v++) if (used[v] >= 0) for (let k = 0; k < dim; k++) out[used[v] * dim + k] = array[v * dim + k];
-      return out;
-    };
-    positions = gather(positions, 3);
-    if (colors) colors = gather(colors, 3);
-    for (const key of Object.keys(scalars)) scalars[key] = gather(scalars[key], 1);
-    indices = simplified.map((v) => used[v]);
-  }
-  return { positions, indices, colors, scalars, matrix: node.getMatrix() };
 }
 
 /**
@@ -159,25 +118,48 @@ function reorder(mesh, order = null) {
   return { ...mesh, positions: move(mesh.positions, 3), colors: move(mesh.colors, 3), scalars, indices, order: { indices, remap, unique } };
 }
 
-const gcn = join(dataDir, 'gcn_denoiser/models');
-
-// Noisy scan with its clean original (Fertility, Gaussian noise): one grid for both, so that
-// their difference is the noise and nothing else.
-const noisy = readObj(join(gcn, 'fertility_gaus_n3.obj'));
-const clean = readObj(join(gcn, 'fertility.obj'));
-if (noisy.positions.length !== clean.positions.length || noisy.indices.some((v, i) => v !== clean.indices[i])) {
-  throw new Error('fertility: the noisy and the clean mesh do not share their vertices and faces');
+/**
+ * Keeps about `target` vertices of a terrain (two triangles per vertex): the simplifier keeps a
+ * subset of the vertices, so attribute values (classes included) stay values that were measured.
+ */
+function simplified(mesh, target) {
+  const vertexCount = mesh.positions.length / 3;
+  if (vertexCount <= target) return mesh;
+  const [kept] = MeshoptSimplifier.simplify(mesh.indices, mesh.positions, 3, Math.floor((2 * target * 3) / 3) * 3, 0.01, ['LockBorder']);
+  const used = new Int32Array(vertexCount).fill(-1);
+  let next = 0;
+  for (const v of kept) if (used[v] < 0) used[v] = next++;
+  const gather = (array, dim) => {
+    if (!array) return array;
+    const out = new Float32Array(next * dim);
+    for (let v = 0; v < vertexCount; v++) if (used[v] >= 0) for (let k = 0; k < dim; k++) out[used[v] * dim + k] = array[v * dim + k];
+    return out;
+  };
+  const scalars = Object.fromEntries(Object.entries(mesh.scalars).map(([k, v]) => [k, gather(v, 1)]));
+  return { ...mesh, positions: gather(mesh.positions, 3), colors: gather(mesh.colors, 3), scalars, indices: kept.map((v) => used[v]) };
 }
-const pairBox = boxOf(noisy.positions, clean.positions);
-const noisyOrdered = reorder(noisy);
-await writeMesh('fertility-noisy', { ...noisyOrdered, box: pairBox });
-await writeMesh('fertility-clean', { ...reorder(clean, noisyOrdered.order), box: pairBox });
 
-// CAD part (Fandisk, clean).
-await writeMesh('fandisk', reorder(readObj(join(gcn, 'fandisk.obj'))));
-
-// Colored mesh: CGAL's b9 urban LiDAR scene (ground is label 0 there).
-await writeMesh('b9-colors', reorder(await terrainFromCli(join(dataDir, 'cgal_debian_libcgal_demo/data/points_3/b9_training.ply'), ['--ground-class', '0'])));
-
-// Terrain with height above ground and classes: PDAL's Autzen sample, simplified.
-await writeMesh('autzen-terrain', reorder(await terrainFromCli(join(dataDir, 'pdal_testdata/las/autzen_trim.las'), [], 30000)));
+const meshes = new Map();
+for (const entry of GALLERY_SOURCES) {
+  const mesh = await coreMesh(entry, dataDir, cli, io);
+  meshes.set(entry.file, entry.simplify ? simplified(mesh, entry.simplify) : mesh);
+}
+for (const entry of GALLERY_SOURCES) {
+  const mesh = meshes.get(entry.file);
+  const name = entry.file.replace(/\.glb$/, '');
+  const quantized = entry.quantize !== false;
+  const paired = GALLERY_SOURCES.find((e) => e.pairedWith === entry.file);
+  if (entry.pairedWith || paired) {
+    // A noisy mesh and its clean original: one grid and one vertex order for both, so that their
+    // difference is the noise and nothing else.
+    const noisy = meshes.get(entry.pairedWith ? entry.file : paired.file);
+    const clean = meshes.get(entry.pairedWith ?? entry.file);
+    if (noisy.positions.length !== clean.positions.length || noisy.indices.some((v, i) => v !== clean.indices[i])) {
+      throw new Error(`${entry.file}: the noisy and the clean mesh do not share their vertices and faces`);
+    }
+    const order = reorder(noisy).order;
+    await writeMesh(name, { ...reorder(mesh, order), box: boxOf(noisy.positions, clean.positions), quantized });
+  } else {
+    await writeMesh(name, { ...reorder(mesh), quantized });
+  }
+}

@@ -10,6 +10,7 @@ import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { createServer } from 'vite';
 import { CHROMIUM, openFile } from '../tests/e2e/harness.mjs';
+import { analyze, decodePng } from '../tests/e2e/png.mjs';
 
 const root = fileURLToPath(new URL('../', import.meta.url));
 const webRoot = path.join(root, 'web/');
@@ -34,7 +35,10 @@ const rows = [];
 try {
   for (const file of present) {
     const name = path.basename(file, path.extname(file));
-    const page = await browser.newPage({ viewport: { width: 1000, height: 640 } });
+    // The app's desktop layout; the picture is the 3D view only, the mesh framed to fill it
+    // (viewer.ts: tight framing, the scan's front), so that a reader sees the surface, not a
+    // small mesh far away (issue 30).
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
     await page.goto(`http://127.0.0.1:${server.httpServer.address().port}/`);
     await page.evaluate(() => window.__geoshift.ready);
     await page.evaluate(() => window.__geoshift.workerReady());
@@ -48,7 +52,10 @@ try {
     await page.getByTestId('split-slider').fill('50');
     await page.evaluate(() => window.__geoshift.settled());
     const out = path.join(outDir, `denoise-${name}.png`);
-    await page.locator('canvas').first().screenshot({ path: out });
+    await page.getByTestId('canvas').screenshot({ path: out, style: '.view-tools, .view-status { visibility: hidden; }' });
+    // The share of the view the mesh fills, measured without the split line.
+    const { box } = analyze(decodePng(await page.getByTestId('canvas').screenshot({ style: '.view-tools, .view-status, .split-line { visibility: hidden; }' })));
+    console.error(`${name}: the mesh spans ${(100 * box.width).toFixed(0)}% × ${(100 * box.height).toFixed(0)}% of the view; ${(fs.statSync(out).size / 1024).toFixed(0)} KiB`);
     const s = report.stats[0];
     rows.push(`| ${name} | ${report.vertices} | ${Number(s.noiseLevel).toFixed(3)} | ${s.presmoothingSteps} + ${s.passes} ` +
       `| ${(report.computeMs / 1000).toFixed(1)} s | ![${name}](images/denoise-${name}.png) |`);

@@ -1,9 +1,11 @@
 #include "geoshift/hybrid.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
+#include "hybrid_detail.hpp"
 
 namespace geoshift {
 
@@ -17,6 +19,24 @@ MeanShiftOptions inUnits(MeanShiftOptions o, const Mesh& filtered, double unit) 
   o.radius *= factor;  // 0 stays 0: 3 h_s, scaled with h_s
   o.epsilon *= factor;
   return o;
+}
+
+// filtered + gain × (lifted − restricted), per Euclidean row (hybrid_detail::edgeAwareCoarseSignal).
+AttributeSet withClampResidual(const AttributeSet& filtered, const Multiresolution& mr, const AttributeSet& bounded, double gain) {
+  AttributeSet out = filtered;
+  for (const Attribute& lifted : mr.coarseAttributes.all()) {
+    if (lifted.kind != AttributeKind::Euclidean) continue;
+    std::vector<double>& values = out.find(lifted.name)->values;
+    const std::vector<double>& clamped = bounded.get(lifted.name).values;
+    for (size_t i = 0; i < values.size(); ++i) values[i] += gain * (lifted.values[i] - clamped[i]);
+  }
+  return out;
+}
+
+// The gain synthesize() gives the coarsest level's details (one value for all, or one per level).
+double coarsestGain(const Multiresolution& mr, const std::vector<double>& alpha) {
+  if (alpha.size() <= 1 || mr.levelCount() == 0) return alpha.empty() ? 0.0 : alpha[0];
+  return alpha[std::min<size_t>(alpha.size(), mr.levelCount()) - 1];
 }
 
 }  // namespace
@@ -50,9 +70,19 @@ HybridResult hybridMeanShift(const Mesh& mesh, const AttributeSet& signal, const
   w.levels = hybrid.levels;
   const Multiresolution mr = analyze(mesh, channels, w, progress.slice(0, 0.1));
   result.vertexCounts = mr.vertexCounts();
-  result.coarse = meanShift(mr.coarse, mr.coarseAttributes, inUnits(options, mr.coarse, hybrid.unit), progress.slice(0.1, 0.95));
-  const SynthesisResult fine = synthesize(mr, mr.coarse.positions(), result.coarse.signal, hybrid.alpha, progress.slice(0.95, 1));
-  result.signal = fine.attributes;
+  // The mean shift filters an edge-aware restriction of the signal, within its input's range
+  // (hybrid_detail.hpp: the lifted one overshoots at jumps; a crease's curvature went negative).
+  const AttributeSet bounded = hybrid_detail::edgeAwareCoarseSignal(mr, channels, options);
+  result.coarse = meanShift(mr.coarse, bounded, inUnits(options, mr.coarse, hybrid.unit), progress.slice(0.1, 0.95));
+  const bool detailsDropped = std::all_of(hybrid.alpha.begin(), hybrid.alpha.end(), [](double a) { return a == 0; });
+  // With details, how the restriction differs from the lifted signal is one more detail of the
+  // coarsest level, so that alpha = 1 still gives the input back when the mean shift changes nothing.
+  const SynthesisResult fine = synthesize(mr, mr.coarse.positions(),
+                                          detailsDropped ? result.coarse.signal : withClampResidual(result.coarse.signal, mr, bounded, coarsestGain(mr, hybrid.alpha)),
+                                          hybrid.alpha, progress.slice(0.95, 1));
+  // Without details the fine signal is a prediction from the coarse one: guided by the input
+  // values, so that it does not average across a crease (hybrid_detail.hpp).
+  result.signal = detailsDropped ? hybrid_detail::guidedProlongation(mr, result.coarse.signal, channels, options) : fine.attributes;
   result.positions = hybrid.filterGeometry ? fine.mesh.positions() : mesh.positions();
   if (options.segments) {
     // Every removed vertex joins the segment of the vertex it was collapsed into, coarse to fine.

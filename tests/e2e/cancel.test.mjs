@@ -31,6 +31,8 @@ for (const build of ['threaded', 'single']) {
     });
     t.diagnostic(`${build}: ${rate} progress messages in the last second (the app aims at 5 or more)`);
     assert.equal(await page.getByTestId('progress').getAttribute('data-state'), 'running');
+    // A long steady stage gets its time left once its rate has settled (progress-bar.ts).
+    await page.waitForFunction(() => /left/.test(document.querySelector('[data-testid="progress"]').textContent), null, { timeout: 20_000 });
     assert.match(await page.getByTestId('progress').textContent(), /taubin — \d+%, about .* left/);
     await page.screenshot({ path: `test-output/e2e/cancel-${build}-running.png` });
 

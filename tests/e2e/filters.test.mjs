@@ -63,7 +63,7 @@ test('Add noise then Taubin: vertices move, the error against the pre-noise mesh
   await runPreset(page, 'taubin', { iterations: 20 });
   const report = await lastRun(page);
   assert.ok(report, await page.evaluate(() => window.__geoshift.lastError()));
-  assert.equal(report.iterations, 20);
+  assert.deepEqual(report.iterations, { kind: 'iterations', value: 20 });
   assert.ok(report.error, 'no error against the pre-noise mesh');
   assert.ok(report.error.rms < report.error.inputRms, `smoothing did not reduce the error: ${JSON.stringify(report.error)}`);
   const metrics = await page.getByTestId('metrics').textContent();

@@ -8,9 +8,9 @@ const app = useApp();
 
 const EXPECTED = {
   'noisy-scan': { file: 'fertility-noisy.glb', preset: 'denoise' },
-  'colored-mesh': { file: 'b9-colors.glb', preset: 'smooth-colors' },
+  'colored-mesh': { file: 'autzen-terrain.glb', preset: 'smooth-colors' },
   terrain: { file: 'autzen-terrain.glb', preset: 'terrain' },
-  'cad-part': { file: 'fandisk.glb', preset: 'filter-curvature' },
+  'cad-part': { file: 'fandisk-noisy.glb', preset: 'filter-curvature' },
 };
 
 async function openCase(page, id) {
@@ -36,7 +36,7 @@ test('every case opens in one click, with its preset, a hint and its name in the
   await openCase(page, 'colored-mesh');
   assert.equal(await page.getByTestId('view-mode').inputValue(), 'colors');
   await openCase(page, 'terrain');
-  assert.equal(await page.locator('[data-param="signal"] select').inputValue(), '_height_above_ground');
+  assert.equal((await page.evaluate(() => window.__geoshift.params())).params.signal, '_height_above_ground');
   assert.deepEqual(
     (await page.evaluate(() => window.__geoshift.scalar('_class')))[0].filter((v, i, a) => a.indexOf(v) === i).sort(),
     [1, 2],
@@ -91,7 +91,7 @@ test('a file of one\'s own leaves the case: the hint goes and the URL no longer 
   assert.doesNotMatch(await page.evaluate(() => decodeURIComponent(location.hash)), /case=/);
   // Back returns to the case.
   await page.goBack();
-  await waitForStatusAbout(page, 'fandisk.glb');
+  await waitForStatusAbout(page, 'fandisk-noisy.glb');
   assert.equal(await page.getByTestId('gallery-hint').isVisible(), true);
 });
 

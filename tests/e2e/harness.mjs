@@ -89,8 +89,8 @@ export async function waitForStatusAbout(page, name) {
 
 /** Screenshots the 3D view into test-output/e2e/NAME.png and returns the decoded image. */
 export async function shoot(page, name) {
-  // The view's buttons float over the canvas; they are not part of the picture.
-  const png = await page.getByTestId('canvas').screenshot({ path: `${outputDir}${name}.png`, style: '.view-tools { visibility: hidden; }' });
+  // The view's buttons and run state float over the canvas; they are not part of the picture.
+  const png = await page.getByTestId('canvas').screenshot({ path: `${outputDir}${name}.png`, style: '.view-tools, .view-status { visibility: hidden; }' });
   return decodePng(png);
 }
 
@@ -116,9 +116,21 @@ export async function runPreset(page, presetId, values = {}) {
 
 /**
  * Types numbers into the lil-gui fields of the current preset; choices (shown by label, sent by
- * value) are set through the page's hook.
+ * value) are set through the page's hook. Live preview is off meanwhile: an entered value would
+ * start a preview and a full run of its own (live-preview.ts), and these tests run when they say.
  */
 export async function setParams(page, values) {
+  const live = page.getByTestId('live-preview');
+  const wasLive = await live.isChecked();
+  if (wasLive) await live.uncheck();
+  try {
+    await typeParams(page, values);
+  } finally {
+    if (wasLive) await live.check();
+  }
+}
+
+async function typeParams(page, values) {
   for (const [key, value] of Object.entries(values)) {
     const field = page.locator(`[data-param="${key}"]`);
     // Expert parameters sit in a folded folder: unfold it, as a person would.

@@ -62,6 +62,20 @@ test('the page is cross-origin isolated (COOP/COEP headers)', async () => {
   assert.equal(response.headers()['cross-origin-embedder-policy'], 'require-corp');
 });
 
+test('a closed surface is drawn from outside only, an open one from both sides', async () => {
+  // Drawn double sided, the inner face of a tight fold fought the outer one for depth along the
+  // fold's crest: dotted hairline cracks all over the start-up sample (issue 30).
+  const sides = await app.page.evaluate(async () => {
+    const { loadModel } = await import('/src/loaders.ts');
+    const { materialFor } = await import('/src/materials.ts');
+    const sample = await loadModel('sample.off', await (await fetch('/samples/ChineseDragon-10kv.off')).arrayBuffer());
+    const sheet = await loadModel('sheet.off', new TextEncoder().encode('OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n').buffer);
+    return ['shaded', 'colors', 'scalar'].map((mode) => [materialFor(mode, sample.meshes[0]).side, materialFor(mode, sheet.meshes[0]).side]);
+  });
+  // three: FrontSide 0, DoubleSide 2.
+  for (const [closed, open] of sides) assert.deepEqual([closed, open], [0, 2]);
+});
+
 test('no uncaught errors in the page', () => {
   assert.deepEqual(app.pageErrors.map(String), []);
 });

@@ -2,7 +2,9 @@
 // picked in View (Reset view keeps it), a PNG snapshot with the legend and the split view, Run and
 // Cancel from the keyboard, and heights (not classes) as the terrain preset's default attribute.
 import assert from 'node:assert/strict';
+import { existsSync } from 'node:fs';
 import { readFile } from 'node:fs/promises';
+import { fileURLToPath } from 'node:url';
 import { test } from 'node:test';
 import { pyramidZUpOff, terrain } from './fixtures.mjs';
 import { openFile, outputDir, setParams, useApp } from './harness.mjs';
@@ -60,9 +62,12 @@ test('a glTF terrain opens with +Y up and offers its heights before its classes'
   assert.equal(await page.evaluate(() => window.__geoshift.upAxis()), '+y');
   await page.getByTestId('preset-select').selectOption('terrain');
   const signal = page.locator('[data-param="signal"] select');
-  assert.equal(await signal.inputValue(), '_height_above_ground');
+  assert.equal((await page.evaluate(() => window.__geoshift.params())).params.signal, '_height_above_ground');
+  // In words, as the legend names them (issue 30: `_height_above_ground` beside "height above ground").
+  assert.equal(await signal.inputValue(), 'height above ground');
   const offered = await signal.locator('option').allTextContents();
-  assert.ok(offered.indexOf('_class') > offered.indexOf('_height'), `classes offered before heights: ${offered}`);
+  assert.ok(offered.every((o) => !o.includes('_')), `attribute names instead of words: ${offered}`);
+  assert.ok(offered.indexOf('class') > offered.indexOf('height (along the thinnest axis)'), `classes offered before heights: ${offered}`);
 });
 
 test('the snapshot is the canvas as drawn, with the legend and the split line', async () => {
@@ -80,8 +85,8 @@ test('the snapshot is the canvas as drawn, with the legend and the split line', 
   assert.equal(await page.getByTestId('legend').isVisible(), true);
   assert.equal(await page.getByTestId('split-line').isVisible(), true);
 
-  // The view's own buttons float over it but are not part of the picture.
-  const onScreen = decodePng(await page.getByTestId('viewport').screenshot({ path: `${outputDir}snapshot-page.png`, style: '.view-tools { visibility: hidden; }' }));
+  // The view's own buttons and its run state float over it but are not part of the picture.
+  const onScreen = decodePng(await page.getByTestId('viewport').screenshot({ path: `${outputDir}snapshot-page.png`, style: '.view-tools, .view-status { visibility: hidden; }' }));
   const [download] = await Promise.all([page.waitForEvent('download'), page.getByTestId('snapshot-button').click()]);
   assert.equal(download.suggestedFilename(), 'terrain-view.png');
   const saved = await readFile(await download.path());
@@ -126,14 +131,37 @@ test('Ctrl+Enter runs the preset and Esc cancels it', async () => {
   await page.keyboard.press('Escape');
   await page.evaluate(() => window.__geoshift.idle());
   assert.match(await page.evaluate(() => window.__geoshift.lastError()), /Cancelled/);
+  // A cancel the person asked for is news, not an error (issue 30: red, with a warning sign).
+  const status = await page.getByTestId('status').evaluate((el) => ({ state: el.dataset.state, text: el.textContent }));
+  assert.notEqual(status.state, 'error', status.text);
+  assert.match(status.text, /Cancelled/);
 
   await setParams(page, { iterations: 3 });
   // From inside a parameter field too.
   await page.locator('[data-param="iterations"] input').first().focus();
   await page.keyboard.press('Control+Enter');
-  await page.waitForFunction(() => document.body.dataset.busy === 'false' && window.__geoshift.lastRun()?.iterations === 3, null, { timeout: 10_000 })
+  await page.waitForFunction(() => document.body.dataset.busy === 'false' && window.__geoshift.lastRun()?.iterations?.value === 3, null, { timeout: 10_000 })
     .catch(async (e) => assert.fail(`${e.message}: ${JSON.stringify(await page.evaluate(() => [window.__geoshift.lastRun(), window.__geoshift.lastError(), window.__geoshift.params()]))}`));
   assert.equal(await page.evaluate(() => window.__geoshift.lastError()), null);
+});
+
+// Real scans from the shared data folder (read, not shipped); skipped without it.
+const shared = process.env.GEOSHIFT_SHARED_DATA || fileURLToPath(new URL('../../../shared/data/', import.meta.url));
+const rabbit = `${shared}/guided_denoising_bldeng/models/RealData/rabbit/rabbit.obj`;
+const armadillo = `${shared}/cgal_debian_libcgal_demo/data/meshes/armadillo.off`;
+
+test('a scan from one side opens standing (+Y), not as a relief; a figure opens seen from its front', { skip: !existsSync(rabbit) || !existsSync(armadillo) }, async () => {
+  const { page } = app;
+  // The rabbit scan faces the scanner along +Z: taken for a relief, it opened Z-up as a wavy sheet.
+  let s = await openFile(page, 'rabbit.obj', await readFile(rabbit));
+  assert.equal(s.state, 'ok', s.text);
+  assert.equal(await page.evaluate(() => window.__geoshift.upAxis()), '+y');
+  // The armadillo faces −Z (its head and arms lean that way); it opened seen from its back.
+  s = await openFile(page, 'armadillo.off', await readFile(armadillo));
+  assert.equal(s.state, 'ok', s.text);
+  assert.equal(await page.evaluate(() => window.__geoshift.upAxis()), '+y');
+  const camera = await page.evaluate(() => window.__geoshift.camera());
+  assert.ok(camera.position[2] < camera.target[2], `the camera looks from +Z, at the armadillo's back: ${JSON.stringify(camera)}`);
 });
 
 test('no uncaught errors in the page', () => {

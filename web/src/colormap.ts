@@ -1,6 +1,8 @@
 // Scalar fields as colors: a sequential map (viridis-like) for values of one sign, a diverging
-// blue-white-red map centred on zero for values of both signs, and distinct hues for segment labels.
-// Ranges are clamped at the 2nd and 98th percentiles so that a few spikes do not wash out the rest.
+// blue-white-red map centred on zero for values of both signs, and distinct hues for labels
+// (segments, LiDAR classes). Ranges are clamped at the 2nd and 98th percentiles so that a few spikes
+// do not wash out the rest; magnitudes (absolute curvature, distances, heights above ground) start
+// at zero, so that a field that is never negative is never drawn as if it were.
 
 export type MapKind = 'sequential' | 'diverging' | 'categorical';
 
@@ -8,6 +10,8 @@ export interface ScalarRange {
   kind: MapKind;
   min: number;
   max: number;
+  /** The labels present, ascending (categorical only). */
+  labels?: number[];
 }
 
 const VIRIDIS: Array<[number, number, number]> = [
@@ -34,11 +38,22 @@ export function isMissing(name: string, value: number): boolean {
   return !Number.isFinite(value) || (name === '_geodesic' && value < 0);
 }
 
+/** Labels, not quantities: segments found by a run, LiDAR classes. */
+export function isCategorical(name: string): boolean {
+  return name === '_segment' || /class/i.test(name);
+}
+
+/** Fields that are never negative by definition (a negative height above ground is a few cm of noise). */
+function isMagnitude(name: string): boolean {
+  return name === '_geodesic' || /height_above_ground|vegetation_height/i.test(name);
+}
+
 export function rangeOf(name: string, fields: Float32Array[]): ScalarRange {
-  if (name === '_segment') {
-    let max = 0;
-    for (const f of fields) for (const v of f) max = Math.max(max, v);
-    return { kind: 'categorical', min: 0, max };
+  if (isCategorical(name)) {
+    const seen = new Set<number>();
+    for (const f of fields) for (const v of f) if (Number.isFinite(v) && seen.size <= 4096) seen.add(Math.round(v));
+    const labels = [...seen].sort((a, b) => a - b);
+    return { kind: 'categorical', min: labels[0] ?? 0, max: labels.at(-1) ?? 0, labels };
   }
   const values: number[] = [];
   for (const f of fields) for (const v of f) if (!isMissing(name, v)) values.push(v);
@@ -47,7 +62,10 @@ export function rangeOf(name: string, fields: Float32Array[]): ScalarRange {
   const at = (q: number) => values[Math.min(values.length - 1, Math.floor(q * (values.length - 1)))]!;
   let min = at(0.02);
   let max = at(0.98);
-  if (min < 0 && max > 0) {
+  // A curvature with no negative value (absolute, RMS) is a magnitude too; mean and Gaussian are not.
+  const magnitude = isMagnitude(name) || (name === '_curvature' && values[0]! >= -1e-6 * Math.abs(values.at(-1)!));
+  if (magnitude) min = 0;
+  else if (min < 0 && max > 0) {
     const m = Math.max(-min, max);
     return { kind: 'diverging', min: -m, max: m };
   }
@@ -56,11 +74,7 @@ export function rangeOf(name: string, fields: Float32Array[]): ScalarRange {
 }
 
 export function colorAt(range: ScalarRange, value: number): [number, number, number] {
-  if (range.kind === 'categorical') {
-    // Golden-angle hues: neighbouring labels get clearly different colors.
-    const hue = (Math.round(value) * 0.618034) % 1;
-    return hsl(hue, 0.65, 0.55);
-  }
+  if (range.kind === 'categorical') return labelColor(value);
   const t = (value - range.min) / (range.max - range.min);
   return lerpStops(range.kind === 'diverging' ? DIVERGING : VIRIDIS, t);
 }
@@ -82,8 +96,23 @@ export function colorize(name: string, field: Float32Array, range: ScalarRange):
   return out;
 }
 
-/** CSS gradient of the map, for the legend. */
+/** Golden-angle hues: neighbouring labels get clearly different colors. */
+export function labelColor(label: number): [number, number, number] {
+  const hue = (((Math.round(label) * 0.618034) % 1) + 1) % 1;
+  return hsl(hue, 0.65, 0.55);
+}
+
+/** CSS gradient of the map, for the legend: one band per label when there are few. */
 export function cssGradient(range: ScalarRange): string {
+  const labels = range.labels ?? [];
+  if (range.kind === 'categorical' && labels.length > 0 && labels.length <= 12) {
+    const bands = labels.map((label, i) => {
+      const [r, g, b] = labelColor(label);
+      const color = `rgb(${Math.round(r * 255)} ${Math.round(g * 255)} ${Math.round(b * 255)})`;
+      return `${color} ${((100 * i) / labels.length).toFixed(2)}% ${((100 * (i + 1)) / labels.length).toFixed(2)}%`;
+    });
+    return `linear-gradient(to right, ${bands.join(', ')})`;
+  }
   const stops: string[] = [];
   for (let i = 0; i <= 10; i++) {
     const [r, g, b] = range.kind === 'categorical' ? hsl((i * 0.618034) % 1, 0.65, 0.55) : colorAt(range, range.min + ((range.max - range.min) * i) / 10);

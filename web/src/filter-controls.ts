@@ -14,7 +14,8 @@ import type { ScalarView } from './scalar-view';
 import type { StatusLine } from './status';
 import type { Viewer } from './viewer';
 import type { ViewModeControl } from './view-mode-control';
-import type { WorkerClient } from './worker/client';
+import { counted } from './words';
+import { GeoshiftError, type WorkerClient } from './worker/client';
 
 export interface FilterElements {
   run: HTMLButtonElement;
@@ -53,6 +54,8 @@ export class FilterControls {
   previewGuard: (reason: 'revert' | 'export' | 'model') => void = () => undefined;
   /** Told when a run finished (null: failed or cancelled). */
   onFinished: (report: RunReport | null) => void = () => undefined;
+  /** Told when a run starts (the live preview stops an analysis made ahead of time). */
+  beforeRun: () => void = () => undefined;
 
   constructor(
     private readonly el: FilterElements,
@@ -95,6 +98,8 @@ export class FilterControls {
     this.el.split.value = '0';
     this.log.report = null;
     this.showMetrics(null);
+    // The last file's "Done in 8.54 s" is not news about this one.
+    this.progress.idle();
     this.scalars.setStates(this.states);
     this.panel.setScalarChoices(this.scalarChoices());
     this.updateComparison();
@@ -148,6 +153,7 @@ export class FilterControls {
 
   run(preset: Preset, params: Record<string, unknown>): Promise<void> {
     if (this.busy || this.states.length === 0) return this.current;
+    this.beforeRun();
     this.busy = true;
     this.cancelRequested = false;
     this.log = { report: null, error: null, progressEvents: [] };
@@ -164,13 +170,15 @@ export class FilterControls {
         }, () => this.cancelRequested);
         if (states !== this.states) return; // another file was opened meanwhile
         log.report = report;
-        this.afterRun(preset, report, params.segments === true);
+        this.afterRun(preset, report, params);
         this.onFinished(report);
       } catch (error) {
         this.onFinished(null);
         log.error = describeRunFailure(error);
         this.progress.idle(log.error);
-        this.status.error(`${preset.name}: ${log.error}`);
+        // A cancel the person asked for is news, not a failure: no red, no warning sign.
+        if (error instanceof GeoshiftError && error.kind === 'cancelled') this.status.done(`${preset.name}: ${log.error}`);
+        else this.status.error(`${preset.name}: ${log.error}`);
       } finally {
         this.busy = false;
         this.updateButtons();
@@ -180,7 +188,8 @@ export class FilterControls {
     return this.current;
   }
 
-  private afterRun(preset: Preset, report: RunReport, wantsSegments: boolean): void {
+  private afterRun(preset: Preset, report: RunReport, params: Record<string, unknown>): void {
+    const wantsSegments = params.segments === true;
     const seconds = (report.wallMs / 1000).toFixed(report.wallMs < 10_000 ? 2 : 1);
     this.progress.idle(`Done in ${seconds} s`);
     this.status.done(`${preset.name} done on ${this.fileName} in ${seconds} s`);
@@ -194,6 +203,9 @@ export class FilterControls {
       this.scalars.choose(shown);
       this.viewMode.show('scalar');
     }
+    // The distance field's zero: where its source vertex is (issue 30: it was unmarked).
+    const source = preset.op === 'geodesic' ? this.states.find((s) => Number(params.source) < s.mesh.geometry.getAttribute('position').count) : undefined;
+    this.viewer.setMarker(source ? { mesh: source.mesh, vertex: Number(params.source) } : null);
     this.viewer.geometryChanged();
     this.updateComparison();
   }
@@ -201,6 +213,7 @@ export class FilterControls {
   private revert(): void {
     if (this.busy) return;
     this.previewGuard('revert');
+    this.viewer.setMarker(null);
     for (const state of this.states) revert(state);
     this.scalars.setStates(this.states);
     this.viewer.geometryChanged();
@@ -261,13 +274,13 @@ export class FilterControls {
       rows.push(['Filter', report.preset]);
       rows.push(['Time', `${(report.wallMs / 1000).toFixed(2)} s (${(report.computeMs / 1000).toFixed(2)} s computing)`]);
       rows.push(['Vertices', `${count.format(report.vertices)}${report.meshes > 1 ? ` in ${report.meshes} meshes` : ''}`]);
-      if (report.iterations !== null) rows.push(['Iterations', count.format(report.iterations)]);
+      if (report.iterations !== null) rows.push(iterationsRow(report.iterations));
       const estimate = report.stats.find((st) => typeof st.noiseLevel === 'number');
       if (estimate) {
         const level = (estimate.noiseLevel as number).toPrecision(2);
         rows.push(['Noise level', `${level} × AEL${estimate.noiseEstimated === 'yes' ? ' (measured on the mesh)' : ''}`]);
-        if (typeof estimate.presmoothingSteps === 'number')
-          rows.push(['Chosen', `${estimate.presmoothingSteps} Taubin steps + ${estimate.passes} passes`]);
+        if (typeof estimate.presmoothingSteps === 'number' && typeof estimate.passes === 'number')
+          rows.push(['Chosen', `${counted(estimate.presmoothingSteps, 'Taubin step')} + ${counted(estimate.passes, 'pass', 'passes')}`]);
       }
       if (report.error) {
         const pct = (v: number) => `${((100 * v) / Math.max(report.error!.diagonal, 1e-30)).toFixed(3)}%`;
@@ -284,5 +297,17 @@ export class FilterControls {
         return [dt, dd];
       }),
     );
+  }
+}
+
+/** "Iterations 20", "Passes 10", or the mean of a mean shift ("7.8 per vertex", not "7.808"). */
+function iterationsRow(iterations: NonNullable<RunReport['iterations']>): [string, string] {
+  switch (iterations.kind) {
+    case 'meanIterations':
+      return ['Mean shift steps', `${iterations.value.toFixed(1)} per vertex on average`];
+    case 'passes':
+      return ['Passes', count.format(iterations.value)];
+    default:
+      return ['Iterations', count.format(iterations.value)];
   }
 }

@@ -8,6 +8,9 @@ import type { FilterControls } from './filter-controls';
 import { loadModel } from './loaders';
 import { meshArrays } from './model';
 import type { ParameterPanel } from './panel';
+import type { ScalarView } from './scalar-view';
+import type { ViewMode } from './materials';
+import type { ViewModeControl } from './view-mode-control';
 
 export interface GalleryCase {
   id: string;
@@ -20,6 +23,8 @@ export interface GalleryCase {
   preset: string;
   /** Parameters set on opening; the rest keep the preset's defaults. */
   values: Record<string, unknown>;
+  /** How it is shown on opening: a view mode, and the field of the scalar mode. */
+  view: { mode: ViewMode; field?: string };
   /** One line: what to try. */
   tryThis: string;
   /** Where it comes from (shown as the button's tooltip). */
@@ -34,17 +39,19 @@ export const CASES: GalleryCase[] = [
     reference: { file: 'fertility-clean.glb', name: 'the clean scan' },
     preset: 'denoise',
     values: {},
-    tryThis: 'Run, then compare the error against the clean scan under Result; lower the feature preservation to keep the rims sharp.',
+    view: { mode: 'shaded' },
+    tryThis: 'Run, then compare the error against the clean scan under Result; a smaller Keep edges keeps the rims sharper.',
     credit: 'Fertility with Gaussian noise and its clean original (AIM@SHAPE, via GCN-Denoiser, BSD-3-Clause)',
   },
   {
     id: 'colored-mesh',
     title: 'Colored LiDAR scene',
-    file: 'b9-colors.glb',
+    file: 'autzen-terrain.glb',
     preset: 'smooth-colors',
     values: { segments: true },
-    tryThis: 'Run to even out the colors and label regions; raise the color tolerance to merge roofs, trees and lawns into fewer segments.',
-    credit: 'The b9 aerial LiDAR scene of CGAL\'s classification example (CC0-1.0)',
+    view: { mode: 'colors' },
+    tryThis: 'Run to even out the aerial photo\'s colors and label regions of one color; a larger color tolerance merges roofs, trees and lawns into fewer segments.',
+    credit: 'Autzen Stadium LiDAR points with their RGB (Oregon LiDAR Consortium, via PDAL, BSD), simplified to 40,000 vertices',
   },
   {
     id: 'terrain',
@@ -52,17 +59,20 @@ export const CASES: GalleryCase[] = [
     file: 'autzen-terrain.glb',
     preset: 'terrain',
     values: { signal: '_height_above_ground' },
+    view: { mode: 'scalar', field: '_height_above_ground' },
     tryThis: 'Smooth the height above ground: trees and buildings keep their edges while small bumps flatten; compare before | after with the split view.',
-    credit: 'Autzen Stadium LiDAR (Oregon LiDAR Consortium, via PDAL, BSD), simplified to 30,000 vertices',
+    credit: 'Autzen Stadium LiDAR (Oregon LiDAR Consortium, via PDAL, BSD), simplified to 40,000 vertices',
   },
   {
     id: 'cad-part',
-    title: 'CAD part: curvature',
-    file: 'fandisk.glb',
+    title: 'Noisy CAD part: curvature',
+    file: 'fandisk-noisy.glb',
     preset: 'filter-curvature',
-    values: {},
-    tryThis: 'Run to see curvature filtered along the sharp edges; a smaller curvature tolerance keeps creases apart from the flat faces.',
-    credit: 'Fandisk (H. Hoppe\'s CAD model, via GCN-Denoiser, BSD-3-Clause)',
+    // h_r in the part's own units (1 / length; its creases have about 1.5): a fifth of a crease.
+    values: { hr: 0.3 },
+    view: { mode: 'shaded' },
+    tryThis: 'Run, then drag the split view: the raw curvature (left) is speckled by the noise, the filtered one (right) has flat faces and clean creases; a larger curvature tolerance merges the creases into the faces.',
+    credit: 'Fandisk (H. Hoppe\'s CAD model, via GCN-Denoiser, BSD-3-Clause) with Gaussian noise of 0.1 average edge length',
   },
 ];
 
@@ -74,6 +84,8 @@ export interface GalleryParts {
   app: App;
   panel: ParameterPanel;
   filters: FilterControls;
+  viewMode: ViewModeControl;
+  scalars: ScalarView;
   /** Base URL of the gallery files. */
   base: string;
   /** Told after a case was opened by a click (the URL records it). */
@@ -125,15 +137,20 @@ export class Gallery {
     this.currentId = c.id;
     if (reference && c.reference) filters.setReference(await reference, c.reference.name);
     panel.restore(c.preset, c.values);
+    if (c.view.field) this.parts.scalars.choose(c.view.field);
+    this.parts.viewMode.show(c.view.mode);
     this.hint.textContent = `${c.title}: ${c.tryThis}`;
     this.hint.hidden = false;
+    this.hint.dataset.kind = 'case';
     for (const b of document.querySelectorAll<HTMLElement>('[data-testid="gallery-item"]')) b.setAttribute('aria-pressed', String(b.dataset.case === c.id));
   }
 
-  /** A file of the person's own replaces the case. */
-  leave(): void {
+  /** A file of the person's own replaces the case; `welcome` points a newcomer at the gallery instead. */
+  leave(welcome = false): void {
     this.currentId = null;
-    this.hint.hidden = true;
+    this.hint.textContent = welcome ? 'New here? Open a case above: each one loads a real mesh with the filter that suits it and says what to try.' : '';
+    this.hint.hidden = !welcome;
+    this.hint.dataset.kind = welcome ? 'welcome' : 'none';
     for (const b of document.querySelectorAll<HTMLElement>('[data-testid="gallery-item"]')) b.setAttribute('aria-pressed', 'false');
   }
 }

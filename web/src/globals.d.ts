@@ -18,13 +18,19 @@ interface GeoshiftTestHooks {
   /** The plain-words message of the last failed or cancelled run, or null. */
   lastError(): string | null;
   /** Progress events of the current or last run; `at` is performance.now() on arrival. */
-  progressEvents(): Array<{ fraction: number; stage: string; stageFraction: number; at: number }>;
+  progressEvents(): Array<{ fraction: number; stage: string; stageFraction: number | null; at: number }>;
   /** Positions of every mesh on screen, as plain arrays. */
   positions(): number[][];
   /** A scalar attribute of every mesh (null where a mesh lacks it), as plain arrays. */
   scalar(name: string): Array<number[] | null>;
   /** The bytes Export would download, base64-encoded. */
   exportGlb(): Promise<string>;
+  /** Vertex colors (linear RGB rows) of every mesh on screen (null where a mesh has none). */
+  colors(): Array<number[] | null>;
+  /** Triangle vertex indices of every mesh on screen (null for a non-indexed one). */
+  indices(): Array<number[] | null>;
+  /** World position of the point marked on the model (a geodesic source), or null. */
+  marker(): number[] | null;
   /** The camera: position, orbit target and up, as [x, y, z]. */
   camera(): { position: number[]; target: number[]; up: number[] };
   /** The up axis in use ('+y', '+z', ...). */

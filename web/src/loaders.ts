@@ -3,6 +3,7 @@
 
 import { BufferAttribute, BufferGeometry, Color, Group, Mesh, SRGBColorSpace, type Object3D } from 'three';
 import { LoadError } from './load-error';
+import { markClosed } from './materials';
 import { OffError, parseOff, type OffMesh } from './off';
 import { weld } from './weld';
 
@@ -146,6 +147,39 @@ function prepare(mesh: Mesh): void {
   validate(geometry);
   if (!geometry.getAttribute('normal')) geometry.computeVertexNormals();
   geometry.computeBoundingSphere();
+  if (isClosed(geometry)) markClosed(mesh);
+}
+
+/**
+ * Whether a surface is closed (at most 0.1% of its edges on a border, as a scan with a few tiny
+ * holes): the view then draws the outside only (materials.ts). Edges are compared by vertex index,
+ * so a non-indexed soup counts as open.
+ */
+export function isClosed(geometry: BufferGeometry): boolean {
+  const index = geometry.index;
+  if (!index || index.count < 3) return false;
+  const n = geometry.getAttribute('position').count;
+  // Undirected edges as numbers (lower * n + higher, exact below 2^53), sorted: an edge seen once
+  // lies on a border.
+  const keys = new Float64Array(index.count - (index.count % 3));
+  for (let t = 0; t < keys.length; t += 3) {
+    for (let k = 0; k < 3; k++) {
+      const a = index.getX(t + k);
+      const b = index.getX(t + ((k + 1) % 3));
+      keys[t + k] = Math.min(a, b) * n + Math.max(a, b);
+    }
+  }
+  keys.sort();
+  let border = 0;
+  let edges = 0;
+  for (let i = 0; i < keys.length; ) {
+    let j = i + 1;
+    while (j < keys.length && keys[j] === keys[i]) j++;
+    edges++;
+    if (j - i === 1) border++;
+    i = j;
+  }
+  return border <= 0.001 * edges;
 }
 
 /**

@@ -1,4 +1,5 @@
-// Wiring only: find the page's elements, create the parts, connect them, open the sample.
+// Wiring only: find the page's elements, create the parts, connect them, open the first mesh.
+// start() names the steps; each step is a function below.
 
 import './style.css';
 import { App } from './app';
@@ -20,7 +21,10 @@ import { StatusLine } from './status';
 import { installFailedTestHooks, installTestHooks } from './test-hooks';
 import { ViewModeControl } from './view-mode-control';
 import { Viewer } from './viewer';
-import { WorkerClient } from './worker/client';
+import { WorkerClient, type WorkerInfo } from './worker/client';
+
+/** The preset the start page opens with (a link's preset wins). */
+const START_PRESET = 'curvature';
 
 const SAMPLE = { url: `${import.meta.env.BASE_URL}samples/ChineseDragon-10kv.off`, name: 'ChineseDragon-10kv.off' };
 
@@ -45,16 +49,42 @@ function requestedHeapMB(): number | undefined {
   return Number.isFinite(heap) && heap > 0 ? heap : undefined;
 }
 
-function start(): Promise<void> {
-  const status = new StatusLine(element('status', HTMLElement));
-  let viewer: Viewer;
+/** The page's parts, created once and connected by the steps below. */
+interface Parts {
+  status: StatusLine;
+  viewer: Viewer;
+  legend: Legend;
+  scalars: ScalarView;
+  viewMode: ViewModeControl;
+  client: WorkerClient;
+  panel: ParameterPanel;
+  filters: FilterControls;
+  live: LivePreview;
+  upAxis: UpAxisControl;
+  app: App;
+  snapshot: () => Promise<Blob>;
+}
+
+/** How the page opens meshes: the startup sample, a gallery case, a file of the person's own. */
+interface Demo {
+  gallery: Gallery;
+  hashSync: HashSync;
+  openSample: () => Promise<void>;
+  openOwn: (file: File) => void;
+}
+
+/** The 3D view, or null (after saying so) when the browser has no WebGL. */
+function createViewer(status: StatusLine): Viewer | null {
   try {
-    viewer = new Viewer(element('viewport', HTMLElement));
+    return new Viewer(element('viewport', HTMLElement));
   } catch (error) {
     console.error(error);
     status.error('This browser cannot show 3D graphics (WebGL is unavailable or disabled).');
-    return installFailedTestHooks();
+    return null;
   }
+}
+
+function createParts(status: StatusLine, viewer: Viewer): Parts {
   const legend = new Legend(element('legend', HTMLElement));
   const scalars = new ScalarView(element('scalar-select', HTMLSelectElement), legend, () => viewer.geometryChanged());
   const viewMode = new ViewModeControl(element('view-mode', HTMLSelectElement), viewer, (mode) => scalars.setActive(mode === 'scalar'));
@@ -97,7 +127,7 @@ function start(): Promise<void> {
     kind: element('result-kind', HTMLElement),
     enabled: element('live-preview', HTMLInputElement),
   });
-  const upAxis = new UpAxisControl(element('up-axis-select', HTMLSelectElement), (axis) => viewer.setUp(axisVector(axis)));
+  const upAxis = new UpAxisControl(element('up-axis-select', HTMLSelectElement), (axis, front) => viewer.setUp(axisVector(axis), front));
   const app = new App(
     viewer,
     status,
@@ -114,7 +144,11 @@ function start(): Promise<void> {
       legend: { element: element('legend', HTMLElement), content: legend.shown() },
       splitLine: element('split-line', HTMLElement),
     });
+  return { status, viewer, legend, scalars, viewMode, client, panel, filters, live, upAxis, app, snapshot };
+}
 
+/** Starts the worker; the presets' values and the available ops arrive with it. */
+function connectWorker({ client, panel, filters, status }: Parts): Promise<WorkerInfo> {
   const workerReady = client.ready().then(
     (info) => {
       panel.setCorePresets(info.presets);
@@ -128,42 +162,24 @@ function start(): Promise<void> {
     },
   );
   workerReady.catch(() => undefined);
+  return workerReady;
+}
 
-  const input = element('file-input', HTMLInputElement);
-  input.addEventListener('change', () => {
-    const file = input.files?.[0];
-    // Cleared so that choosing the same file again (after editing it elsewhere) fires 'change'.
-    input.value = '';
-    if (file) openOwn(file);
-  });
-  installDropZone(document.body, element('drop-overlay', HTMLElement), (file) => openOwn(file));
-  element('reset-view', HTMLButtonElement).addEventListener('click', () => viewer.fitToView());
-  element('snapshot-button', HTMLButtonElement).addEventListener('click', () => {
-    snapshot().then(
-      (png) => saveBlob(png, snapshotName(app.stats()?.file ?? 'geoshift')),
-      (error: unknown) => status.error(`Could not take a snapshot: ${error instanceof Error ? error.message : String(error)}`),
-    );
-  });
-  installShortcuts(element('run-button', HTMLButtonElement), element('cancel-button', HTMLButtonElement));
-  installSheet(element('panel-toggle', HTMLButtonElement));
-  // Alt+click picks the source vertex of the geodesic distance.
-  viewer.canvas.addEventListener('click', (event) => {
-    if (!event.altKey || panel.preset().op !== 'geodesic') return;
-    const hit = viewer.pick(event.clientX, event.clientY);
-    if (hit) panel.set('source', hit.vertex);
-  });
-
+/** The gallery, the URL state, and the three ways a mesh gets on screen. */
+function createDemo({ app, panel, filters, upAxis, status, viewMode, scalars }: Parts): Demo {
+  let sampleShown = false;
   const gallery: Gallery = new Gallery(element('gallery', HTMLElement), element('gallery-hint', HTMLElement), {
     app,
     panel,
     filters,
+    viewMode,
+    scalars,
     base: `${import.meta.env.BASE_URL}gallery/`,
     onOpened: () => hashSync.write(true),
     onError: (message) => status.error(message),
   });
-  let sampleShown = false;
   const openSample = async () => {
-    gallery.leave();
+    gallery.leave(true);
     await app.openUrl(SAMPLE.url, SAMPLE.name);
     sampleShown = app.stats()?.file === SAMPLE.name;
   };
@@ -181,16 +197,64 @@ function start(): Promise<void> {
     sampleShown = false;
     void app.openFile(file).then(() => hashSync.write(true));
   };
+  return { gallery, hashSync, openSample, openOwn };
+}
 
-  // A link to a gallery case opens the case (restore below); any other page starts with the sample.
-  const linkedCase = decodeState(location.hash).caseId;
-  const ready = (linkedCase ? Promise.resolve() : openSample())
+/** Buttons, the file picker, drop, keyboard and pointer shortcuts. */
+function installControls({ app, viewer, panel, status, snapshot }: Parts, demo: Demo): void {
+  const input = element('file-input', HTMLInputElement);
+  input.addEventListener('change', () => {
+    const file = input.files?.[0];
+    // Cleared so that choosing the same file again (after editing it elsewhere) fires 'change'.
+    input.value = '';
+    if (file) demo.openOwn(file);
+  });
+  installDropZone(document.body, element('drop-overlay', HTMLElement), (file) => demo.openOwn(file));
+  element('reset-view', HTMLButtonElement).addEventListener('click', () => viewer.fitToView());
+  element('snapshot-button', HTMLButtonElement).addEventListener('click', () => {
+    snapshot().then(
+      (png) => saveBlob(png, snapshotName(app.stats()?.file ?? 'geoshift')),
+      (error: unknown) => status.error(`Could not take a snapshot: ${error instanceof Error ? error.message : String(error)}`),
+    );
+  });
+  installShortcuts(element('run-button', HTMLButtonElement), element('cancel-button', HTMLButtonElement));
+  installSheet(element('panel-toggle', HTMLButtonElement));
+  // Alt+click picks the source vertex of the geodesic distance.
+  viewer.canvas.addEventListener('click', (event) => {
+    if (!event.altKey || panel.preset().op !== 'geodesic') return;
+    const hit = viewer.pick(event.clientX, event.clientY);
+    if (hit) panel.set('source', hit.vertex);
+  });
+}
+
+/**
+ * The first mesh: a link to a gallery case opens the case (with the link's settings); any other
+ * page starts with the sample. Resolves when it is on screen.
+ */
+function openFirstMesh({ app, panel }: Parts, demo: Demo, workerReady: Promise<WorkerInfo>): Promise<void> {
+  const linked = decodeState(location.hash);
+  // The sample is a clean mesh: its curvature shows at once what the app does; Denoise would
+  // change nothing visible (issue 30).
+  if (!linked.preset && !linked.caseId) panel.restore(START_PRESET, {});
+  return (linked.caseId ? Promise.resolve() : demo.openSample())
     // The presets' availability is known once the worker is up; a link may name any preset.
     .then(() => workerReady.catch(() => undefined))
-    .then(() => hashSync.restore(location.hash))
-    .then(() => (app.stats() ? undefined : openSample()))
-    .then(() => hashSync.replace())
+    .then(() => demo.hashSync.restore(location.hash))
+    .then(() => (app.stats() ? undefined : demo.openSample()))
+    .then(() => demo.hashSync.replace())
     .then(() => app.settled());
+}
+
+function start(): Promise<void> {
+  const status = new StatusLine(element('status', HTMLElement));
+  const viewer = createViewer(status);
+  if (!viewer) return installFailedTestHooks();
+  const parts = createParts(status, viewer);
+  const workerReady = connectWorker(parts);
+  const demo = createDemo(parts);
+  installControls(parts, demo);
+  const ready = openFirstMesh(parts, demo, workerReady);
+  const { app, filters, panel, upAxis, live, snapshot } = parts;
   installTestHooks({
     ready,
     app,

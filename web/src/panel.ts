@@ -5,6 +5,7 @@
 import GUI from 'lil-gui';
 import type { CorePreset } from 'geoshift';
 import { PRESETS, applyCorePresets, hasValues, paramsOf, presetById, type Param, type Preset } from './presets';
+import { scalarLabel } from './legend';
 import { HEIGHT } from './runner';
 import { orderSignals } from './signal-order';
 
@@ -165,8 +166,10 @@ export class ParameterPanel {
     const values = this.valuesOf(preset);
     const gui = new GUI({ container: this.container, title: `${preset.name} parameters`, width: 300 });
     if (preset.needsScalar) {
-      const c = gui.add(values, 'signal', this.signalChoices()).name('Attribute to filter');
-      c.domElement.title = `The per-vertex value to smooth: one from the file, or ${HEIGHT}, the height of each vertex along the mesh's thinnest axis.`;
+      // Shown in words, as the legend and the Field select name them ("height above ground").
+      const choices = Object.fromEntries(this.signalChoices().map((n) => [n === HEIGHT ? 'height (along the thinnest axis)' : scalarLabel(n), n]));
+      const c = gui.add(values, 'signal', choices).name('Attribute to filter');
+      c.domElement.title = 'The per-vertex value to smooth: one from the file, or the height of each vertex along the mesh\'s thinnest axis.';
       c.domElement.dataset.param = 'signal';
     }
     for (const param of preset.params.filter((p) => !p.expert)) addController(gui, values, param);

@@ -85,13 +85,19 @@ const mode = (): ChoiceParam => ({
 });
 const rangeUpdate = (): ChoiceParam => ({
   key: 'rangeUpdate', kind: 'choice', label: 'Value update', value: '',
-  options: { 'Joint (moves with the point)': 'joint', 'Sampled (the paper)': 'sampled' },
-  tooltip: 'How a point\'s value follows it: its own mean shift step (smooths evenly sampled signals better) or read from the surface where the point is (the paper).',
+  // Short labels: the select is as wide as the panel's value column; the tooltip explains them.
+  options: { Joint: 'joint', 'Sampled (paper)': 'sampled' },
+  tooltip: 'How a point\'s value follows it. Joint: it takes its own mean shift step (moves with the point; smooths evenly sampled signals better). Sampled: it is read from the surface where the point is (the paper).',
 });
 const segments: FlagParam = {
   key: 'segments', kind: 'flag', label: 'Also find segments', value: false,
   tooltip: 'Label vertices that end at the same mode with one number, and show the labels as segments.',
 };
+/**
+ * The mean shift presets' settings a first try does not need, folded under "Expert settings" so
+ * that the Result section stays in view at 1280 × 800 (issue 30).
+ */
+const expertFilterParams = (): Param[] => [mode(), radius(CORE), kmax(CORE), eps(CORE), passes(CORE), rangeUpdate(), levels(CORE), alpha(CORE)].map(expert);
 const levels = (v: number) => num('levels', 'Wavelet levels L', '', v, 0, 12, 1, 'Filter a coarser version of the mesh L times simplified, then add the detail back. Faster on big meshes.');
 const alpha = (v: number) => num('alpha', 'Detail gain α', '', v, 0, 2, 0.05, 'How much of the removed fine detail is added back (0 = none, 1 = all of it).');
 
@@ -116,9 +122,9 @@ export const PRESETS: Preset[] = [
     summary: 'Evens out blotchy vertex colors while keeping borders between differently colored regions.',
     fixed: { signal: 'color' },
     params: [
-      mode(), hs(CORE),
-      num('hr', 'Color tolerance h_r', 'linear RGB', CORE, 0.01, 1, 0.01, 'How different two colors may be and still be blended. Smaller keeps more borders.'),
-      radius(CORE), kmax(CORE), eps(CORE), passes(CORE), rangeUpdate(), levels(CORE), alpha(CORE), segments,
+      hs(CORE),
+      num('hr', 'Color tolerance h_r', 'linear RGB', CORE, 0.01, 0.5, 0.01, 'How different two colors may be and still be blended. Smaller keeps more borders.'),
+      segments, ...expertFilterParams(),
     ],
   },
   {
@@ -126,9 +132,9 @@ export const PRESETS: Preset[] = [
     summary: 'Smooths the absolute curvature of the surface, e.g. to find ridges and valleys robustly.',
     fixed: { signal: 'curvature' },
     params: [
-      mode(), hs(CORE),
-      num('hr', 'Curvature tolerance h_r', '1 / length', CORE, 0.01, 10, 0.01, 'How different two curvature values may be and still be averaged.'),
-      radius(CORE), kmax(CORE), eps(CORE), passes(CORE), rangeUpdate(), levels(CORE), alpha(CORE), segments,
+      hs(CORE),
+      num('hr', 'Curvature tolerance h_r', '1 / length', CORE, 0.01, 2, 0.01, 'How different two curvature values may be and still be averaged. Smaller keeps creases apart from the faces around them.'),
+      segments, ...expertFilterParams(),
     ],
   },
   {
@@ -136,9 +142,9 @@ export const PRESETS: Preset[] = [
     id: 'terrain', name: 'Terrain', op: 'filter', needsScalar: true, core: 'terrain-bms',
     summary: 'Smooths a per-vertex attribute of a terrain (height, vegetation height, class) along the ground.',
     params: [
-      mode(), hs(CORE),
-      num('hr', 'Value tolerance h_r', 'attribute units', CORE, 0.01, 1000, 0.01, 'How different two attribute values may be and still be averaged.'),
-      radius(CORE), kmax(CORE), eps(CORE), passes(CORE), rangeUpdate(), levels(CORE), alpha(CORE), segments,
+      hs(CORE),
+      num('hr', 'Value tolerance h_r', 'attribute units', CORE, 0.1, 30, 0.1, 'How different two attribute values may be and still be averaged (for a height above ground: metres).'),
+      segments, ...expertFilterParams(),
     ],
   },
   {

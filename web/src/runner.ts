@@ -1,6 +1,7 @@
 // Runs an op on every mesh of the open file, one after another, through the worker. Results are
 // applied only when every mesh succeeded, so a failure or a cancel leaves the model as it was.
 
+import { BufferAttribute } from 'three';
 import { applyOutput, baseGeometry, dropPreview, meshArrays, rmsError, snapshot, type MeshState } from './model';
 import type { Preset } from './presets';
 import { GeoshiftError, type RunOutput, type WorkerClient } from './worker/client';
@@ -14,8 +15,8 @@ export interface RunReport {
   computeMs: number;
   vertices: number;
   meshes: number;
-  /** Iterations or passes the op reports, when it does. */
-  iterations: number | null;
+  /** Iterations, mean shift steps per vertex or passes the op reports, when it does. */
+  iterations: { kind: 'iterations' | 'meanIterations' | 'passes'; value: number } | null;
   /** Per-vertex RMS distance to the positions before noise was added, and that of the input. */
   error: { rms: number; inputRms: number; diagonal: number } | null;
   scalars: string[];
@@ -26,7 +27,8 @@ export interface ProgressEvent {
   /** Overall, over all meshes. */
   fraction: number;
   stage: string;
-  stageFraction: number;
+  /** The stage's own fraction, or null for a step that cannot tell (sending the mesh). */
+  stageFraction: number | null;
   /** performance.now() when the page received it. */
   at: number;
 }
@@ -47,10 +49,10 @@ export function heightOf(positions: Float32Array): Float32Array {
   return Float32Array.from({ length: positions.length / 3 }, (_, v) => positions[3 * v + up]!);
 }
 
-function iterationsOf(stats: RunOutput['stats'][]): number | null {
-  for (const key of ['iterations', 'meanIterations', 'passes']) {
-    const values = stats.map((s) => s[key]).filter((v): v is number => typeof v === 'number');
-    if (values.length) return Math.max(...values);
+function iterationsOf(stats: RunOutput['stats'][]): RunReport['iterations'] {
+  for (const kind of ['iterations', 'meanIterations', 'passes'] as const) {
+    const values = stats.map((s) => s[kind]).filter((v): v is number => typeof v === 'number');
+    if (values.length) return { kind, value: Math.max(...values) };
   }
   return null;
 }
@@ -67,9 +69,11 @@ export async function runOnMeshes(
   const started = performance.now();
   const outputs: RunOutput[] = [];
   const inputs: Float32Array[] = [];
+  /** Per mesh, the raw field a filter of a computed signal started from (for "before"). */
+  const raws: Array<Record<string, Float32Array>> = [];
   for (const [i, state] of states.entries()) {
     const prefix = states.length > 1 ? `mesh ${i + 1}/${states.length}: ` : '';
-    onProgress({ fraction: i / states.length, stage: `${prefix}sending the mesh`, stageFraction: 0, at: performance.now() });
+    onProgress({ fraction: i / states.length, stage: `${prefix}preparing the mesh`, stageFraction: null, at: performance.now() });
     const stopIfCancelled = () => {
       if (cancelled()) throw new GeoshiftError('cancelled', 'cancelled');
     };
@@ -85,6 +89,7 @@ export async function runOnMeshes(
         onProgress({ fraction: (i + fraction) / states.length, stage: `${prefix}${stage}`, stageFraction: fraction, at: performance.now() }),
       ),
     );
+    raws.push(await rawField(client, state.id, preset, params));
   }
   // Every mesh succeeded: apply all at once.
   let errorSum = 0;
@@ -95,6 +100,8 @@ export async function runOnMeshes(
     const output = outputs[i]!;
     dropPreview(state);
     snapshot(state);
+    // "Before" shows the field the filter started from, so that the split view compares two fields.
+    for (const [name, values] of Object.entries(raws[i]!)) state.before?.setAttribute(name.toLowerCase(), new BufferAttribute(values, 1));
     if (preset.op === 'noise' && output.positions && !state.preNoise) state.preNoise = inputs[i]!;
     applyOutput(state, output, preset.replacesColors === true);
     if (preset.op !== 'noise' && state.preNoise && output.positions && state.preNoise.length === output.positions.length) {
@@ -120,6 +127,18 @@ export async function runOnMeshes(
     scalars: [...new Set(outputs.flatMap((o) => Object.keys(o.scalars).map((n) => n.toLowerCase())))],
     stats,
   };
+}
+
+/**
+ * A filter of a signal the op computes from the shape (the absolute curvature) leaves no field in
+ * the mesh before it: the raw field is computed here by the `curvature` op on the same mesh (the
+ * filter left the worker's copy unmoved), the same values the filter started from
+ * (filter_request.cpp). Other runs: nothing.
+ */
+async function rawField(client: WorkerClient, meshId: string, preset: Preset, params: Record<string, unknown>): Promise<Record<string, Float32Array>> {
+  if (preset.op !== 'filter' || params.signal !== 'curvature' || params.filterGeometry === true) return {};
+  const raw = await client.run(meshId, 'curvature', { kind: 'abs' }, () => undefined);
+  return raw.scalars;
 }
 
 /** Plain words for a failed run. */

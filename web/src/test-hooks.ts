@@ -51,7 +51,18 @@ export function installTestHooks({ ready, app, filters, panel, workerReady, view
         return a ? Array.from(a.array as ArrayLike<number>) : null;
       }),
     exportGlb: async () => base64(new Uint8Array(await filters.exportBytes())),
+    colors: () =>
+      filters.meshes().map((mesh) => {
+        const a = mesh.geometry.getAttribute('color');
+        if (!a) return null;
+        // Denormalized RGB rows, as the filters read them (8-bit colors of a glTF included).
+        const rgb: number[] = [];
+        for (let i = 0; i < a.count; i++) rgb.push(a.getComponent(i, 0), a.getComponent(i, 1), a.getComponent(i, 2));
+        return rgb;
+      }),
+    indices: () => filters.meshes().map((mesh) => (mesh.geometry.index ? Array.from(mesh.geometry.index.array as ArrayLike<number>) : null)),
     camera: () => viewer.cameraState(),
+    marker: () => viewer.markerPosition(),
     upAxis: () => upAxis.axis(),
     params: () => ({ preset: panel.preset().id, params: panel.params() }),
     previewEvents: () => live.events.slice(),

@@ -1,13 +1,19 @@
 // Which way is up: guessed from the mesh when it opens, or picked in the bar's "Up" select. The
 // view orbits about that axis and Reset view frames the mesh standing on it.
 //
-// The guess, in order: a surface whose area-weighted normals mostly agree (a terrain, a relief) has
-// its up where they point; a solid standing on a flat base (a scanned statue, a CAD part on a
-// table) has its up opposite the largest flat face at its extreme; otherwise glTF's convention
-// (+Y, which the format prescribes) or, for the other formats, +Z when the mesh is clearly taller
-// along Z than along Y (scanners and CAD tools mostly write Z-up) and +Y when not.
+// The guess, in order: a flat surface whose area-weighted normals mostly agree (a terrain, a
+// relief) has its up where they point; a surface seen from one side only but not flat (a scan from
+// one viewpoint: its normals agree too) faces the scanner, which looks along −Z with +Y up; a solid
+// standing on a flat base (a scanned statue, a CAD part on a table) has its up opposite the largest
+// flat face at its extreme; otherwise glTF's convention (+Y, which the format prescribes) or, for
+// the other formats, +Z when the mesh is clearly taller along Z than along Y (scanners and CAD
+// tools mostly write Z-up) and +Y when not.
+//
+// The front, the side the default view looks at: a one-sided scan's scanned side; otherwise the side
+// its upper part leans to (a figure's head and arms are ahead of its body: the armadillo opened seen
+// from its back, issue 30); the default when neither says.
 
-import { Vector3, type Mesh } from 'three';
+import { Quaternion, Vector3, type Mesh } from 'three';
 
 export const AXES = ['+y', '+z', '+x', '-y', '-z', '-x'] as const;
 export type Axis = (typeof AXES)[number];
@@ -30,13 +36,49 @@ export interface UpGuess {
   axis: Axis;
   /** Why, in a few words (shown as the select's tooltip). */
   reason: string;
+  /** −1 when the front faces away from the default view's side (depthAxis), else 1. */
+  front: 1 | -1;
 }
+
+/**
+ * The horizontal direction the default view looks from, for an up axis: +Z when +Y is up, rotated
+ * with the up axis (for +Z up: −Y), as the viewer's default view direction is.
+ */
+export function depthAxis(up: Vector3): Vector3 {
+  return new Vector3(0, 0, 1).applyQuaternion(new Quaternion().setFromUnitVectors(new Vector3(0, 1, 0), up.clone().normalize()));
+}
+
+/** A relief is at most this thick along its normals, as a share of its other sides. */
+const RELIEF_THICKNESS = 0.4;
+/** The upper part's lean, as a share of the depth, that tells the front. */
+const FRONT_LEAN = 0.05;
 
 /** Faces looked at by the guess: every k-th beyond this many (the guess needs area shares only). */
 const MAX_FACES = 200_000;
 
-/** Guesses the up axis of meshes (world coordinates); `fileName` tells the format's convention. */
+/** Guesses the up axis and front of meshes (world coordinates); `fileName` tells the format's convention. */
 export function guessUpAxis(meshes: Mesh[], fileName: string): UpGuess {
+  const sample = sampleFaces(meshes);
+  const guess = guessAxis(sample, fileName);
+  // A part on a flat base or a relief has no front to speak of: the default side shows it as its
+  // file was drawn.
+  const figure = guess.kind === 'scan' || guess.kind === 'convention';
+  return { axis: guess.axis, reason: guess.reason, front: figure ? guessFront(sample, guess) : 1 };
+}
+
+/** What the axis was guessed from. */
+type GuessKind = 'relief' | 'scan' | 'base' | 'convention';
+
+/** Per sampled face: unit normal, area, centroid (7 numbers); their normal sum, area and box. */
+interface FaceSample {
+  faces: number[];
+  normalSum: Vector3;
+  area: number;
+  min: Vector3;
+  max: Vector3;
+}
+
+function sampleFaces(meshes: Mesh[]): FaceSample {
   const a = new Vector3();
   const b = new Vector3();
   const c = new Vector3();
@@ -72,17 +114,28 @@ export function guessUpAxis(meshes: Mesh[], fileName: string): UpGuess {
       faces.push(n.x / twice, n.y / twice, n.z / twice, twice / 2, (2 * a.x + b.x + c.x) / 3, (2 * a.y + b.y + c.y) / 3, (2 * a.z + b.z + c.z) / 3);
     }
   }
-  if (!(area > 0)) return { axis: '+y', reason: 'no surface to guess from' };
+  return { faces, normalSum: normalSum.multiplyScalar(0.5), area, min, max };
+}
 
-  // A relief or terrain: one side of the surface faces one way.
-  const agreement = normalSum.length() / (2 * area);
+function guessAxis({ faces, normalSum, area, min, max }: FaceSample, fileName: string): Omit<UpGuess, 'front'> & { kind: GuessKind } {
+  if (!(area > 0)) return { axis: '+y', reason: 'no surface to guess from', kind: 'convention' };
+  const extent = max.clone().sub(min);
+
+  // One side of the surface faces one way: a relief or terrain when it is flat that way, else a
+  // scan from one viewpoint (the rabbit scan read as a wavy sheet when taken for a relief).
+  const agreement = normalSum.length() / area;
   if (agreement > 0.5) {
     const k = largestComponent(normalSum);
-    return { axis: axisOf(k, normalSum.getComponent(k)), reason: 'most of the surface faces this way' };
+    const others = [0, 1, 2].filter((i) => i !== k).map((i) => extent.getComponent(i));
+    if (extent.getComponent(k) <= RELIEF_THICKNESS * Math.min(...others)) {
+      return { axis: axisOf(k, normalSum.getComponent(k)), reason: 'it is a relief: most of its surface faces this way', kind: 'relief' };
+    }
+    // Facing along Y it is taken for a steep relief in a Y-up file; along X or Z, for a scan.
+    if (k === 1) return { axis: axisOf(k, normalSum.getComponent(k)), reason: 'most of its surface faces this way', kind: 'relief' };
+    return { axis: '+y', reason: 'it is scanned from one side, and scanners look along −Z with +Y up', kind: 'scan' };
   }
 
   // A solid on a flat base: the largest flat area at an extreme, facing outwards.
-  const extent = max.clone().sub(min);
   const cosLimit = Math.cos((10 * Math.PI) / 180);
   let bestArea = 0;
   let bestDown: Axis | null = null;
@@ -99,12 +152,42 @@ export function guessUpAxis(meshes: Mesh[], fileName: string): UpGuess {
   }
   if (bestDown && bestArea > 0.02 * area) {
     const up = (bestDown[0] === '-' ? '+' : '-') + bestDown[1];
-    return { axis: up as Axis, reason: 'it stands on a flat base' };
+    return { axis: up as Axis, reason: 'it stands on a flat base', kind: 'base' };
   }
 
-  if (/\.(glb|gltf)$/i.test(fileName)) return { axis: '+y', reason: 'glTF files are Y-up' };
-  if (extent.z > 1.2 * extent.y) return { axis: '+z', reason: 'it is taller along Z' };
-  return { axis: '+y', reason: 'no clear sign; +Y is the usual default' };
+  if (/\.(glb|gltf)$/i.test(fileName)) return { axis: '+y', reason: 'glTF files are Y-up', kind: 'convention' };
+  if (extent.z > 1.2 * extent.y) return { axis: '+z', reason: 'it is taller along Z', kind: 'convention' };
+  return { axis: '+y', reason: 'no clear sign; +Y is the usual default', kind: 'convention' };
+}
+
+/** The front (see the file comment) for a guessed up axis. */
+function guessFront({ faces, normalSum, area, min, max }: FaceSample, guess: Omit<UpGuess, 'front'>): 1 | -1 {
+  if (!(area > 0)) return 1;
+  const up = axisVector(guess.axis);
+  const depth = depthAxis(up);
+  const depthExtent = Math.abs(max.clone().sub(min).dot(depth));
+  if (!(depthExtent > 0)) return 1;
+  // A scan from one side: the side it was scanned from.
+  if (normalSum.length() / area > 0.5) return normalSum.dot(depth) < 0 ? -1 : 1;
+  // The upper 30% against the whole, area-weighted, along the depth axis.
+  const low = Math.min(min.dot(up), max.dot(up));
+  const high = Math.max(min.dot(up), max.dot(up));
+  const cut = high - 0.3 * (high - low);
+  let all = 0, allArea = 0, top = 0, topArea = 0;
+  const c = new Vector3();
+  for (let f = 0; f < faces.length; f += 7) {
+    c.set(faces[f + 4]!, faces[f + 5]!, faces[f + 6]!);
+    const a = faces[f + 3]!;
+    all += a * c.dot(depth);
+    allArea += a;
+    if (c.dot(up) >= cut) {
+      top += a * c.dot(depth);
+      topArea += a;
+    }
+  }
+  if (!(topArea > 0)) return 1;
+  const lean = (top / topArea - all / allArea) / depthExtent;
+  return lean < -FRONT_LEAN ? -1 : 1;
 }
 
 function largestComponent(v: Vector3): number {
@@ -114,12 +197,13 @@ function largestComponent(v: Vector3): number {
 
 /** The bar's "Up" select: "Auto (guess)" or an axis the person picked, kept across files. */
 export class UpAxisControl {
-  private guess: UpGuess = { axis: '+y', reason: '' };
+  private guess: UpGuess = { axis: '+y', reason: '', front: 1 };
   private readonly autoOption: HTMLOptionElement;
 
   constructor(
     private readonly select: HTMLSelectElement,
-    private readonly apply: (axis: Axis) => void,
+    /** Stands the view on an axis, looking at the front (1: the default side, −1: the other). */
+    private readonly applyView: (axis: Axis, front: 1 | -1) => void,
   ) {
     const auto = select.querySelector<HTMLOptionElement>('option[value="auto"]');
     if (!auto) throw new Error('the up-axis select lacks its "auto" option');
@@ -133,6 +217,11 @@ export class UpAxisControl {
     this.autoOption.textContent = `Auto (${label(this.guess.axis)})`;
     this.autoOption.title = `Guessed: ${label(this.guess.axis)}, because ${this.guess.reason}.`;
     this.apply(this.axis());
+  }
+
+  /** The guessed front holds for the guessed axis; another axis is seen from its default side. */
+  private apply(axis: Axis): void {
+    this.applyView(axis, axis === this.guess.axis ? this.guess.front : 1);
   }
 
   /** The axis in use. */

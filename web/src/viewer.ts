@@ -5,6 +5,9 @@
 import {
   BufferGeometry,
   Color,
+  Mesh as ThreeMesh,
+  MeshBasicMaterial,
+  SphereGeometry,
   DirectionalLight,
   HemisphereLight,
   PerspectiveCamera,
@@ -19,6 +22,7 @@ import {
   type Object3D,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { framingPoints, isFlat, tightFrame } from './framing';
 import { materialFor, type ViewMode } from './materials';
 
 export interface ViewerModel {
@@ -40,6 +44,9 @@ export interface Comparison {
 // The default view looks at the model from the front, a little from above and the right, in a
 // frame where +Y is up; other up axes rotate it (for +Z up the front is -Y, as Z-up tools have it).
 const VIEW_DIRECTION = new Vector3(0.35, 0.3, 1).normalize();
+// A flat model (a terrain, a relief) is seen from higher up, so that its relief shows instead of a
+// thin strip at a grazing angle (issue 30): 50° above the horizon.
+const FLAT_VIEW_DIRECTION = new Vector3(0.35 * Math.cos((50 * Math.PI) / 180), Math.sin((50 * Math.PI) / 180), Math.cos((50 * Math.PI) / 180)).normalize();
 const CAMERA_UP = new Vector3(0, 1, 0);
 
 export class Viewer {
@@ -48,6 +55,8 @@ export class Viewer {
   private readonly scene = new Scene();
   private readonly camera = new PerspectiveCamera(40, 1, 0.01, 100);
   private controls: OrbitControls;
+  /** The side the default view looks from: 1 the default one, −1 the opposite (setUp). */
+  private front: 1 | -1 = 1;
   /** World direction of "up": the camera orbits about it and Reset view stands the model on it. */
   private readonly up = new Vector3(0, 1, 0);
   private readonly hemisphere = new HemisphereLight(0xffffff, 0x3a3d44, 1.1);
@@ -56,6 +65,15 @@ export class Viewer {
   private comparison: Comparison = { before: new Map(), showBefore: false, split: null };
   private frameRequested = false;
   private frameWaiters: Array<() => void> = [];
+  /** The model's bounding sphere (world), for the clipping planes; null: to be measured again. */
+  private modelSphere: Sphere | null = null;
+  /** The camera is where fitToView put it (no drag since): a resize frames the model again. */
+  private framed = false;
+  /** A point marked on the model (the source of a geodesic distance), drawn over everything. */
+  private readonly marker = new ThreeMesh(
+    new SphereGeometry(1, 16, 12),
+    new MeshBasicMaterial({ color: 0xff3b6b, depthTest: false, transparent: true, opacity: 0.95 }),
+  );
 
   /** Throws if WebGL is unavailable; the caller reports it. */
   constructor(private readonly container: HTMLElement) {
@@ -77,6 +95,9 @@ export class Viewer {
     this.scene.add(this.camera, this.hemisphere);
 
     this.controls = this.createControls();
+    this.marker.visible = false;
+    this.marker.renderOrder = 10;
+    this.scene.add(this.marker);
 
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
@@ -89,10 +110,35 @@ export class Viewer {
       for (const mesh of this.model.meshes) mesh.geometry.dispose();
     }
     this.comparison = { before: new Map(), showBefore: false, split: null };
+    this.marker.visible = false;
+    this.modelSphere = null;
     this.model = model;
     this.scene.add(model.root);
     this.applyMode();
     this.fitToView();
+  }
+
+  /**
+   * Marks a vertex of a mesh on screen (world position, a dot 1.5% of the model's size), or
+   * removes the mark (null).
+   */
+  setMarker(at: { mesh: Mesh; vertex: number } | null): void {
+    this.marker.visible = false;
+    if (at && this.model) {
+      const position = at.mesh.geometry.getAttribute('position');
+      if (at.vertex >= 0 && at.vertex < position.count) {
+        at.mesh.updateWorldMatrix(true, false);
+        this.marker.position.fromBufferAttribute(position, at.vertex).applyMatrix4(at.mesh.matrixWorld);
+        this.marker.scale.setScalar(0.015 * this.boundingSphere(this.model).radius);
+        this.marker.visible = true;
+      }
+    }
+    this.requestRender();
+  }
+
+  /** Where the marker is (world), or null when none is shown. */
+  markerPosition(): number[] | null {
+    return this.marker.visible ? this.marker.position.toArray() : null;
   }
 
   setViewMode(mode: ViewMode): void {
@@ -102,6 +148,8 @@ export class Viewer {
 
   /** Re-picks materials after attributes were added or removed (new colors, a scalar field). */
   geometryChanged(): void {
+    // Positions may have moved (a denoised mesh, noise added).
+    this.modelSphere = null;
     this.applyMode();
   }
 
@@ -110,8 +158,12 @@ export class Viewer {
     this.requestRender();
   }
 
-  /** Sets the up direction (a unit axis) and frames the model again standing on it. */
-  setUp(up: Vector3): void {
+  /**
+   * Sets the up direction (a unit axis) and frames the model again standing on it, seen from the
+   * default side (front 1) or the opposite one (−1, up-axis.ts guesses which side is the front).
+   */
+  setUp(up: Vector3, front: 1 | -1 = 1): void {
+    this.front = front;
     if (!up.equals(this.up)) {
       this.up.copy(up).normalize();
       // OrbitControls reads camera.up once, when it is created, so a new up needs new controls.
@@ -136,29 +188,31 @@ export class Viewer {
     return read(this.canvas);
   }
 
-  /** Frames the whole model: centred, filling the view, seen from the default direction. */
+  /**
+   * Frames the whole model: seen from the default direction (from higher up for a flat model),
+   * centred, its vertices spanning most of the narrower side of the view (framing.ts).
+   */
   fitToView(): void {
     if (!this.model) return;
     const sphere = this.boundingSphere(this.model);
     const radius = Math.max(sphere.radius, 1e-6);
-    const halfVertical = (this.camera.fov * Math.PI) / 360;
-    const halfHorizontal = Math.atan(Math.tan(halfVertical) * this.camera.aspect);
-    // Distance at which the sphere touches the narrower side of the view, plus a small margin.
-    const distance = (radius / Math.sin(Math.min(halfVertical, halfHorizontal))) * 1.05;
+    const points = framingPoints(this.model.root, this.model.meshes);
+    const toUp = new Quaternion().setFromUnitVectors(CAMERA_UP, this.up);
+    const direction = (isFlat(points, this.up) ? FLAT_VIEW_DIRECTION : VIEW_DIRECTION).clone().applyQuaternion(toUp);
+    if (this.front < 0) direction.applyAxisAngle(this.up, Math.PI);
     // Motion left over from a drag (damping) would carry the camera away from the new framing.
     this.controls.enableDamping = false;
     this.controls.update();
     this.controls.enableDamping = true;
-    this.camera.near = radius / 1000;
-    this.camera.far = distance + radius * 100;
+    const { target, distance } = tightFrame(points, sphere.center, direction, this.up, this.camera.fov, this.camera.aspect);
     this.camera.up.copy(this.up);
-    const direction = VIEW_DIRECTION.clone().applyQuaternion(new Quaternion().setFromUnitVectors(CAMERA_UP, this.up));
-    this.camera.position.copy(sphere.center).addScaledVector(direction, distance);
+    this.camera.position.copy(target).addScaledVector(direction, distance);
     this.camera.updateProjectionMatrix();
-    this.controls.target.copy(sphere.center);
+    this.controls.target.copy(target);
     this.controls.minDistance = radius * 0.01;
     this.controls.maxDistance = radius * 50;
     this.controls.update();
+    this.framed = true;
     this.requestRender();
   }
 
@@ -203,6 +257,7 @@ export class Viewer {
     // which requests the next frame until the motion settles.
     this.controls.update();
     this.updateLights();
+    this.updateClipping();
     const { before, showBefore, split } = this.comparison;
     if (before.size > 0 && split !== null) {
       const width = Math.max(1, this.container.clientWidth);
@@ -248,8 +303,36 @@ export class Viewer {
     const controls = new OrbitControls(this.camera, this.canvas);
     controls.enableDamping = true;
     controls.enableRotate = controls.enablePan = controls.enableZoom = true;
+    // The wheel zooms toward the point under the pointer, so that a closer look at a detail stays
+    // outside the surface instead of diving through it toward the model's centre.
+    controls.zoomToCursor = true;
     controls.addEventListener('change', () => this.requestRender());
+    // The person moved the view: a resize keeps their view instead of framing the model again.
+    controls.addEventListener('start', () => {
+      this.framed = false;
+    });
     return controls;
+  }
+
+  /**
+   * Near and far planes around the model as seen from where the camera is now. With fixed planes
+   * (radius / 1000 to 100 radii beyond) the depth buffer resolved ~1/2000 of the model's size,
+   * coarser than the gap between the two sides of a tight fold of a sculpted mesh: the far side
+   * showed through as dotted hairline cracks along every fold (issue 30). Here the range is about
+   * the model's depth, a few hundred times finer.
+   */
+  private updateClipping(): void {
+    if (!this.model) return;
+    this.modelSphere ??= this.boundingSphere(this.model);
+    const { center, radius } = this.modelSphere;
+    const distance = this.camera.position.distanceTo(center);
+    const near = Math.max(distance - 1.05 * radius, distance / 500, radius / 5000);
+    const far = Math.max(distance + 1.05 * radius, near * 2);
+    if (near !== this.camera.near || far !== this.camera.far) {
+      this.camera.near = near;
+      this.camera.far = far;
+      this.camera.updateProjectionMatrix();
+    }
   }
 
   private updateLights(): void {
@@ -285,6 +368,8 @@ export class Viewer {
     this.renderer.setSize(width, height, false);
     this.camera.aspect = width / height;
     this.camera.updateProjectionMatrix();
+    // The phone's sheet opening or closing resizes the view: the mesh is framed in what is left.
+    if (this.framed) this.fitToView();
     this.requestRender();
   }
 }
