@@ -26,7 +26,9 @@ AttributeSet edgeAwareCoarseSignal(const Multiresolution& mr, const AttributeSet
 // of each channel's h_r (joint bilateral upsampling, Kopf et al. 2007). The geometric prediction
 // alone averages across a crease: an odd vertex on a crease, predicted from two crease neighbours
 // and four flat ones, drops to a third of the crease's value, one vertex in two along every crease.
-// When every weight underflows, the neighbour with the closest input value is taken. Weights are
+// When every weight underflows (no even neighbour within ~7 h_r, as a crease vertex the decimation
+// left among flat ones), the vertex is read the same way from its fine 1-ring once the rest is
+// known; an outlier unlike all of those takes its closest known neighbour. Weights are
 // non-negative and sum to one, so each output lies in the range of the coarse values. UnitVector
 // rows are re-normalised.
 AttributeSet guidedProlongation(const Multiresolution& mr, const AttributeSet& coarse, const AttributeSet& input,

@@ -45,6 +45,31 @@ double distance2(const std::vector<double>& guide, int D, int a, int b) {
   return s;
 }
 
+// F's row of vertex o as the mean of the known ring vertices' rows, weighted by base times a
+// Gaussian of their input distance to o (in units of h_r). False, and o untouched, when every
+// weight underflows against its base (no known neighbour within ~7 h_r).
+bool guidedMean(const std::vector<double>& guide, int D, int o, const std::vector<int>& ring,
+                const std::vector<double>& base, const std::vector<char>& known, std::vector<double>& F) {
+  double total = 0, baseTotal = 0;
+  std::vector<double> w(ring.size(), 0.0);
+  for (size_t q = 0; q < ring.size(); ++q) {
+    if (!known[ring[q]]) continue;
+    w[q] = base[q] * std::exp(-0.5 * distance2(guide, D, o, ring[q]));
+    total += w[q];
+    baseTotal += base[q];
+  }
+  if (!(total > 1e-12 * baseTotal) || !(total > 0)) return false;
+  double* out = &F[static_cast<size_t>(o) * D];
+  std::fill_n(out, D, 0.0);
+  for (size_t q = 0; q < ring.size(); ++q) {
+    if (w[q] == 0) continue;
+    const double weight = w[q] / total;
+    const double* from = &F[static_cast<size_t>(ring[q]) * D];
+    for (int k = 0; k < D; ++k) out[k] += weight * from[k];
+  }
+  return true;
+}
+
 }  // namespace
 
 AttributeSet edgeAwareCoarseSignal(const Multiresolution& mr, const AttributeSet& input, const MeanShiftOptions& options) {
@@ -98,38 +123,45 @@ AttributeSet guidedProlongation(const Multiresolution& mr, const AttributeSet& c
     c0 += a.dim;
   }
 
-  std::vector<double> w;
+  // Coarse vertices are known; odd ones become known as they are predicted, coarse to fine.
+  std::vector<char> known(n, 0);
+  for (int c : mr.coarseToFine) known[c] = 1;
+  std::vector<int> deferred;
+  std::vector<int> ring;
+  std::vector<double> base;
   for (auto level = mr.levels.rbegin(); level != mr.levels.rend(); ++level) {
     const WaveletLevel& L = *level;
     for (size_t i = 0; i < L.odd.size(); ++i) {
-      const int o = L.odd[i];
-      const int begin = L.offset[i], end = L.offset[i + 1];
-      w.assign(end - begin, 0.0);
-      double total = 0, predicted = 0;
-      int closest = -1;
-      double closestDistance = std::numeric_limits<double>::infinity();
-      for (int q = begin; q < end; ++q) {
-        const double s = distance2(guide, D, o, L.neighbor[q]);
-        w[q - begin] = L.predict[q] * std::exp(-0.5 * s);
-        total += w[q - begin];
-        predicted += L.predict[q];
-        if (s < closestDistance) closestDistance = s, closest = q - begin;
-      }
-      if (!(total > 1e-12 * predicted)) {
-        std::fill(w.begin(), w.end(), 0.0);
-        if (closest >= 0) w[closest] = 1;
-        total = closest >= 0 ? 1 : 0;
-      }
-      double* out = &F[static_cast<size_t>(o) * D];
-      std::fill_n(out, D, 0.0);
-      if (!(total > 0)) continue;
-      for (int q = begin; q < end; ++q) {
-        const double weight = w[q - begin] / total;
-        if (weight == 0) continue;
-        const double* from = &F[static_cast<size_t>(L.neighbor[q]) * D];
-        for (int k = 0; k < D; ++k) out[k] += weight * from[k];
-      }
+      ring.assign(L.neighbor.begin() + L.offset[i], L.neighbor.begin() + L.offset[i + 1]);
+      base.assign(L.predict.begin() + L.offset[i], L.predict.begin() + L.offset[i + 1]);
+      if (guidedMean(guide, D, L.odd[i], ring, base, known, F)) known[L.odd[i]] = 1;
+      else deferred.push_back(L.odd[i]);
     }
+  }
+  // A vertex whose prediction ring holds no value like its own (a crease vertex the decimation
+  // left among flat ones only) is read from its fine 1-ring instead, once that is known; sweeps
+  // go on while they make progress.
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (int o : deferred) {
+      if (known[o]) continue;
+      ring = mr.fine.neighbors(o);
+      base.assign(ring.size(), 1.0);
+      if (guidedMean(guide, D, o, ring, base, known, F)) known[o] = 1, progress = true;
+    }
+  }
+  // What is left is unlike every known neighbour (an outlier): the closest of them in the input.
+  for (int o : deferred) {
+    if (known[o]) continue;
+    ring = mr.fine.neighbors(o);
+    int closest = -1;
+    double closestDistance = std::numeric_limits<double>::infinity();
+    for (int q : ring) {
+      const double s = distance2(guide, D, o, q);
+      if (known[q] && s < closestDistance) closestDistance = s, closest = q;
+    }
+    if (closest >= 0) std::copy_n(&F[static_cast<size_t>(closest) * D], D, &F[static_cast<size_t>(o) * D]);
+    known[o] = 1;
   }
 
   AttributeSet out(n);
