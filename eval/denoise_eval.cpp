@@ -161,7 +161,7 @@ struct OracleCache {
 struct WhatIf {
   std::optional<double> strength, radius;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing;
-  std::optional<bool> refineNoise, crossValidation;
+  std::optional<bool> refineNoise, halving;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
   std::vector<int> presmoothing;
@@ -179,7 +179,7 @@ struct WhatIf {
     if (!presmoothing.empty()) o.presmoothing = presmoothing;
     if (probeSpacing) o.probeSpacing = *probeSpacing;
     if (refineNoise) o.refineNoise = *refineNoise;
-    if (crossValidation) o.crossValidation = *crossValidation;
+    if (halving) o.halvingRace = *halving;
   }
 };
 
@@ -246,7 +246,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
   } else {
     note << "σ " << r.noiseLevel << " AEL; Taubin " << r.presmoothingSteps << " + " << r.passes << " passes"
          << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "")
-         << (o.fixedPasses > 0 ? " (fixed)" : "");
+         << (o.fixedPasses > 0 ? " (fixed)" : "") << " (" << r.passesRun << " computed)";
   }
   return scoreOf(c, m.positions(), note.str(), ms);
 }
@@ -389,7 +389,7 @@ int usage(const char* error) {
          "  --oracles-only     only fill the oracles' cache (no denoiser, no report)\n"
          "  --noise-estimate   only the estimated against the true noise level of each case\n"
          "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience,\n"
-         "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --cross-validation on|off\n"
+         "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --halving on|off\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors (slow)\n"
          "  --true-noise       the denoiser is given the true noise level (an oracle experiment)\n"
@@ -446,7 +446,7 @@ int main(int argc, char** argv) {
       else if (a == "--trace") whatIf.trace = true;
       else if (a == "--true-noise") whatIf.trueNoise = true;
       else if (a == "--refine-noise") whatIf.refineNoise = value() != "off";
-      else if (a == "--cross-validation") whatIf.crossValidation = value() != "off";
+      else if (a == "--halving") whatIf.halving = value() != "off";
       else if (a == "--cache") cache.dir = value();
       else if (a == "--no-cache") cache.dir.clear();
       else if (a == "--markdown") markdownPath = value();

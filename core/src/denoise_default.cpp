@@ -39,7 +39,6 @@ void validate(const DenoiseOptions& o) {
   if (o.vertexIterations < 1 || o.vertexIterations > 10000)
     bad("vertex iterations must be in [1, 10000] (got " + std::to_string(o.vertexIterations) + ")");
   if (o.probeSpacing < 1 || o.probeSpacing > 100) bad("probe spacing must be in [1, 100] edges (got " + std::to_string(o.probeSpacing) + ")");
-  if (o.crossValidation && o.probeSpacing < 2) bad("cross-validation needs a probe spacing of at least 2 edges (got " + std::to_string(o.probeSpacing) + ")");
 }
 
 // One copy of the mesh being denoised: its positions and the face normals its guard refers to.
@@ -90,7 +89,7 @@ class Passes {
 
   void pass(Track& t, double rangeBandwidth, DenoiseResult& result) {
     work_.positions() = t.positions;
-    std::vector<Vec3> targets = shiftFaceNormals(hoods_, faceAreas(work_), faceNormals(work_), rangeBandwidth, parallel_);
+    std::vector<Vec3> targets = shiftFaceNormals(hoods_, work_, rangeBandwidth, parallel_);
     VertexUpdateResult u = updateVertices(work_, std::move(targets), *t.update);
     result.limitedSteps += u.limitedSteps;
     t.positions = std::move(u.positions);
@@ -168,7 +167,20 @@ class CandidateRace {
       for (const Run& run : runs_) leader = std::min(leader, run.best);
       for (Run& run : runs_)
         if (run.active && run.t >= o_.patience && run.best > leader + kRaceMargin) run.active = false;
+      halve();
     }
+  }
+
+  // Every `patience` passes, the worse half of the runs still going stop (the best by rank stay):
+  // with four runs, at most two run beyond the first checkpoint and one beyond the second.
+  void halve() {
+    if (!o_.halvingRace) return;
+    std::vector<Run*> active;
+    for (Run& run : runs_)
+      if (run.active) active.push_back(&run);
+    if (active.size() < 2 || active.front()->t % o_.patience != 0 || active.front()->t == 0) return;
+    std::stable_sort(active.begin(), active.end(), [](const Run* a, const Run* b) { return a->best < b->best; });
+    for (size_t i = (active.size() + 1) / 2; i < active.size(); ++i) active[i]->active = false;
   }
 
   const std::vector<Scored>& scored() const { return scored_; }
@@ -268,13 +280,12 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   // The noise level the race ranks with: the estimate, or with refineNoise its upper estimate
   // (refined below from the candidates).
   const double lowSigma = sigma / o.strength;
-  const double raceSigma = o.refineNoise && result.noiseEstimated && !o.crossValidation ? std::max(lowSigma, estimate.upperLevel * ael) : lowSigma;
+  const double raceSigma = o.refineNoise && result.noiseEstimated ? std::max(lowSigma, estimate.upperLevel * ael) : lowSigma;
   RiskOptions riskOptions;
   riskOptions.normalSmoothing = o.riskNormalSmoothing;
   riskOptions.taubin = o.supportSmoothing;
   riskOptions.seed = o.seed;
   riskOptions.probeSpacing = o.probeSpacing;
-  riskOptions.crossValidation = o.crossValidation;
   const RiskEstimate risk(mesh, input, raceSigma, o.strength, riskOptions);
   std::vector<Vec3> probed = risk.probedInput();
   const VertexUpdateOptions probedUpdate = passes.updateFrom(probed);
@@ -299,7 +310,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   size_t chosen = race.bestIndex();
   double finalSigma = raceSigma;
   rank.sigma = finalSigma;
-  if (o.refineNoise && result.noiseEstimated && !o.crossValidation) {
+  if (o.refineNoise && result.noiseEstimated) {
     double implied = raceSigma * raceSigma;
     for (const auto& c : scored) {
       const double v = risk.impliedVariance(c.sums);
@@ -316,7 +327,10 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   result.passes = winner.passes;
   if (finalSigma != raceSigma || raceSigma != lowSigma) result.noiseLevel = finalSigma * o.strength / ael;
   const Risk winnerRisk = risk.at(winner.sums, finalSigma);
-  result.estimatedError = std::sqrt(std::max(0.0, winnerRisk.positionUnbiased)) / ael;
+  // Below a tenth of the noise the estimate is not resolved: one probe's spread is larger, and a
+  // winner that set the refined noise level has an estimate of zero by construction.
+  const double error = std::sqrt(std::max(0.0, winnerRisk.positionUnbiased));
+  result.estimatedError = error >= 0.1 * finalSigma ? error / ael : 0.0;
   if (chosen != race.bestIndex()) {
     Track x{input, &inputUpdate};
     passes.presmooth(x, winner.steps);

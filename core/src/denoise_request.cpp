@@ -1,6 +1,11 @@
 // What a denoise request means (denoise_request.hpp).
 #include "geoshift/denoise_request.hpp"
 
+#include <string>
+#include <vector>
+
+#include "geoshift/error.hpp"
+
 namespace geoshift {
 
 namespace {
@@ -15,7 +20,12 @@ void applyPaper(const ParamRequest& r, DenoiseOptions& o) {
   PaperDenoiseOptions& p = o.paper;
   MeanShiftOptions& ms = p.meanShift;
   if (r.has("hs")) ms.spatialBandwidth = r.number("hs");
-  if (r.has("hr")) ms.rangeBandwidth = r.number("hr");
+  if (r.has("hr")) {
+    const std::vector<double> hr = r.numbers("hr");
+    if (hr.size() != 1)
+      throw InputError("denoise: parameter hr takes one value with preset \"paper\" (got " + std::to_string(hr.size()) + ")");
+    ms.rangeBandwidth = hr.front();
+  }
   if (r.has("radius")) ms.radius = r.number("radius");
   if (r.has("passes")) p.passes = r.integer("passes");
   if (r.has("kmax")) ms.maxIterations = r.integer("kmax");
@@ -33,7 +43,7 @@ void applyDefault(const ParamRequest& r, DenoiseOptions& o) {
   if (r.has("noise")) o.noiseLevel = r.number("noise");
   if (r.has("strength")) o.strength = r.number("strength");
   if (r.has("hs")) o.neighborhood.spatialBandwidth = r.number("hs");
-  if (r.has("hr")) o.rangeBandwidths = {r.number("hr")};
+  if (r.has("hr")) o.rangeBandwidths = r.numbers("hr");
   if (r.has("radius")) o.neighborhood.radius = r.number("radius");
   if (r.has("passes")) o.fixedPasses = r.integer("passes");
   if (r.has("presmoothing")) {

@@ -54,19 +54,15 @@ std::vector<char> spacedVertices(const Mesh& mesh, const std::vector<Vec3>& norm
 
 RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double sigma, double strength,
                            const RiskOptions& options)
-    : input_(input), sigma_(sigma), strength_(strength), eps_(0.01 * sigma * strength),
-      crossValidation_(options.crossValidation) {
+    : input_(input), sigma_(sigma), strength_(strength), eps_(0.01 * sigma * strength) {
   const int n = work.vertexCount();
-  auto smoothedNormals = [&](const std::vector<Vec3>& from) {
-    work.positions() = from;
-    if (options.normalSmoothing > 0) {
-      TaubinOptions taubin = options.taubin;
-      taubin.iterations = options.normalSmoothing;
-      taubinSmooth(work, taubin);
-    }
-    return vertexNormals(work);
-  };
-  normals_ = smoothedNormals(input);
+  work.positions() = input;
+  if (options.normalSmoothing > 0) {
+    TaubinOptions taubin = options.taubin;
+    taubin.iterations = options.normalSmoothing;
+    taubinSmooth(work, taubin);
+  }
+  normals_ = vertexNormals(work);
   const std::vector<char> chosen = spacedVertices(work, normals_, options.probeSpacing);
   probe_.assign(n, 0);
   std::mt19937_64 rng(options.seed);
@@ -74,31 +70,14 @@ RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double si
     // One draw per vertex whatever the spacing, so a vertex's sign does not depend on the others.
     const signed char sign = (rng() >> 63) ? 1 : -1;
     if (normals_[v].squaredNorm() > 0) ++measured_;
-    if (chosen[v] && !(crossValidation_ && work.isBoundaryVertex(v))) {
-      probe_[v] = crossValidation_ ? 1 : sign;
+    if (chosen[v]) {
+      probe_[v] = sign;
       ++probed_;
     }
-  }
-  if (crossValidation_) {
-    // Each held-out vertex takes the mean of its neighbours (none of them held out: spacing >= 2),
-    // and N comes from that input, so that neither depends on a held-out vertex's own noise.
-    heldOutInput_ = input;
-    for (int v = 0; v < n; ++v) {
-      if (probe_[v] == 0) continue;
-      Vec3 mean = Vec3::Zero();
-      int count = 0;
-      work.forEachOutgoing(v, [&](int h) {
-        mean += input[work.head(h)];
-        ++count;
-      });
-      if (count > 0) heldOutInput_[v] = mean / count;
-    }
-    normals_ = smoothedNormals(heldOutInput_);
   }
 }
 
 std::vector<Vec3> RiskEstimate::probedInput() const {
-  if (crossValidation_) return heldOutInput_;
   std::vector<Vec3> out = input_;
   for (size_t v = 0; v < out.size(); ++v)
     if (probe_[v] != 0) out[v] += eps_ * probe_[v] * normals_[v];
@@ -106,19 +85,12 @@ std::vector<Vec3> RiskEstimate::probedInput() const {
 }
 
 RiskSums RiskEstimate::sums(const std::vector<Vec3>& x, const std::vector<Vec3>& xp) const {
-  double fit = 0, div = 0, heldOut = 0;
+  double fit = 0, div = 0;
   for (size_t v = 0; v < x.size(); ++v) {
     const double e = (x[v] - input_[v]).dot(normals_[v]);
     fit += e * e;
-    if (crossValidation_) {
-      if (probe_[v] == 0) continue;
-      const double d = (xp[v] - input_[v]).dot(normals_[v]);
-      heldOut += d * d;
-    } else {
-      div += probe_[v] * (xp[v] - x[v]).dot(normals_[v]);
-    }
+    div += probe_[v] * (xp[v] - x[v]).dot(normals_[v]);
   }
-  if (crossValidation_) return {fit, 0.0, heldOut};
   // The probe covers probed_ of the measured_ vertices: the trace is scaled up to all of them.
   const double scale = probed_ > 0 ? static_cast<double>(measured_) / probed_ : 0.0;
   return {fit, div * scale / eps_};
@@ -126,20 +98,11 @@ RiskSums RiskEstimate::sums(const std::vector<Vec3>& x, const std::vector<Vec3>&
 
 Risk RiskEstimate::at(const RiskSums& r, double sigma) const {
   const double m = std::max(1, measured_);
-  if (crossValidation_) {
-    // E[held-out term] = error + σ² at each held-out vertex. A strength above 1 rewards moving away
-    // from the input, as it does in Stein's estimate through σ (there 2(s² − 1)σ² div; here the
-    // displacement itself).
-    const double cv = r.heldOut / std::max(1, probed_);
-    const double s2 = strength_ * strength_;
-    return {cv - sigma * sigma * s2 - (s2 - 1) * r.fit / m, cv - sigma * sigma};
-  }
   auto position = [&](double s) { return (r.fit - m * s * s + 2 * s * s * r.div) / m; };
   return {position(sigma * strength_), position(sigma)};
 }
 
 double RiskEstimate::impliedVariance(const RiskSums& r) const {
-  if (crossValidation_) return 0.0;
   const double m = std::max(1, measured_), dof = m - 2 * r.div;
   return dof > 0.5 * m ? r.fit / dof : 0.0;
 }

@@ -20,11 +20,6 @@ struct RiskOptions {
   // (chosen greedily in index order), so that the probe's cross terms, which carry its randomness,
   // mostly vanish; the divergence is scaled up from the probed vertices to all.
   int probeSpacing = 1;
-  // Cross-validation instead of Stein's estimate: the probed vertices are held out (their positions
-  // replaced by the mean of their neighbours') and each candidate computed from that input is scored
-  // by its distance along N to the held-out positions at those vertices. Unbiased for any noise that
-  // is independent between vertices (Stein's estimate needs it Gaussian; impulsive noise breaks it).
-  bool crossValidation = false;
 };
 
 // A candidate's risk, in squared length per vertex: `ranked` with σ times the strength (what
@@ -33,11 +28,10 @@ struct Risk {
   double position = 0, positionUnbiased = 0;
 };
 
-// What the risk is made of, for one candidate: Σ e² and the divergence (scaled to all vertices);
-// with cross-validation, also the held-out vertices' Σ of squared distances. The risk for any σ
-// follows from them (RiskEstimate::at).
+// What the risk is made of, for one candidate: Σ e² and the divergence (scaled to all vertices).
+// The risk for any σ follows from them (RiskEstimate::at).
 struct RiskSums {
-  double fit = 0, div = 0, heldOut = 0;
+  double fit = 0, div = 0;
 };
 
 class RiskEstimate {
@@ -46,8 +40,7 @@ class RiskEstimate {
   // sigma: the noise level in the mesh's units, strength: its multiplier for ranking.
   RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double sigma, double strength, const RiskOptions& options);
 
-  // The input moved by ε b_i N_i at every probed vertex (cross-validation: the held-out input):
-  // where the probe's copy of each candidate starts.
+  // The input moved by ε b_i N_i at every probed vertex: where the probe's copy of each candidate starts.
   std::vector<Vec3> probedInput() const;
   // The sums of candidate x, whose copy computed from probedInput() is xp.
   RiskSums sums(const std::vector<Vec3>& x, const std::vector<Vec3>& xp) const;
@@ -65,11 +58,9 @@ class RiskEstimate {
  private:
   const std::vector<Vec3>& input_;
   std::vector<Vec3> normals_;       // N; zero where a vertex has none (not measured)
-  std::vector<signed char> probe_;  // b: ±1 at probed vertices, else 0 (cross-validation: 1 where held out)
-  std::vector<Vec3> heldOutInput_;  // cross-validation: the input with the held-out vertices replaced
+  std::vector<signed char> probe_;  // b: ±1 at probed vertices, else 0
   double sigma_ = 0, strength_ = 1, eps_ = 0;
   int measured_ = 0, probed_ = 0;
-  bool crossValidation_ = false;
 };
 
 }  // namespace geoshift::denoise_detail

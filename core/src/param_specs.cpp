@@ -195,8 +195,9 @@ OpParamSpecs denoiseSpecs() {
               P("hs", T::Number, "spatial bandwidth h_s in AEL")
                   .byDefault(d.neighborhood.spatialBandwidth).positive(1e6).appliesWhen(meanShift)
                   .inCase(paperPreset, ms.spatialBandwidth),
-              P("hr", T::Number, "range bandwidth h_r between unit normals; smaller keeps more edges")
-                  .byDefault(d.rangeBandwidths.front()).positive(1e6).appliesWhen(meanShift)
+              P("hr", T::Number,
+                "range bandwidth h_r between unit normals; smaller keeps more edges (preset default: candidates SURE picks from)")
+                  .list().byDefault(d.rangeBandwidths).positive(1e6).appliesWhen(meanShift)
                   .inCase(paperPreset, ms.rangeBandwidth),
               P("radius", T::Number, "neighbourhood radius in AEL")
                   .byDefault(d.neighborhood.radius).positive(1e6).appliesWhen(meanShift)

@@ -61,8 +61,17 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   ParallelOptions par = options.parallel;
   par.chunk = 1024;
   const Progress quiet;  // the iterations report; the parallel loops inside them do not
-  std::vector<Vec3> currentCross(nf);
-  std::vector<double> weight(nf), offset(nf);
+  // Per face, what its corners read: its target normal with the offset n·c of its target plane
+  // (c the centroid) and its weight, side by side for the gather's memory accesses.
+  struct Plane {
+    Vec3 n;
+    double offset = 0, weight = 0;
+  };
+  std::vector<Plane> plane(nf);
+  // The cross product of each face at the current positions; faceOk leaves that of the candidate it
+  // checked in checkedCross, which is the current one of the next iteration (every face a halving
+  // touches is checked again after it, so the last check of each face saw its final candidate).
+  std::vector<Vec3> currentCross(nf), checkedCross(nf);
   std::vector<double> scale(nv);
   std::vector<char> halvedThisRound(nv);
   std::vector<int> badFaces, touched;
@@ -71,6 +80,7 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
 
   auto faceOk = [&](int f) {
     const Vec3 c = crossOf(candidate, mesh.face(f));
+    checkedCross[f] = c;
     const bool keepsInputSide = inputNormal[f].squaredNorm() == 0.0f || c.dot(inputNormal[f].cast<double>()) > 0.0 ||
                                 (options.flipGuard == FlipGuard::InputOrTarget && c.dot(target[f]) > 0.0);
     const bool keepsCurrentSide = currentCross[f].squaredNorm() == 0.0 || c.dot(currentCross[f]) > 0.0;
@@ -82,26 +92,31 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     // Each vertex gathers over its faces in the mesh's counter-clockwise order from its first
     // half-edge: a fixed order, so the sums (and so the results) do not depend on the threads.
     // Per face once, not once per corner: its cross product, its weight, and its target plane's
-    // offset n·c (c the centroid), so that a corner x_v is pulled by (n·c − n·x_v) n.
+    // offset, so that a corner x_v is pulled by (n·c − n·x_v) n.
+    if (it == 0) {
+      parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { currentCross[f] = crossOf(x, mesh.face(f)); });
+    } else {
+      currentCross.swap(checkedCross);
+    }
     parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
       const Face& t = mesh.face(f);
-      currentCross[f] = crossOf(x, t);
-      weight[f] = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
-      offset[f] = target[f].dot((x[t[0]] + x[t[1]] + x[t[2]]) / 3.0);
+      plane[f].n = target[f];
+      plane[f].weight = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
+      plane[f].offset = target[f].dot((x[t[0]] + x[t[1]] + x[t[2]]) / 3.0);
     });
     parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
       Vec3 sum = Vec3::Zero();
       double wsum = 0;
+      const Vec3 xv = x[v];
       mesh.forEachOutgoing(v, [&](int h) {
-        const int f = Mesh::faceOf(h);
-        const Vec3& n = target[f];
-        if (n.squaredNorm() == 0) return;
-        sum += (weight[f] * (offset[f] - n.dot(x[v]))) * n;
-        wsum += weight[f];
+        const Plane& p = plane[Mesh::faceOf(h)];
+        if (p.n.squaredNorm() == 0) return;
+        sum += (p.weight * (p.offset - p.n.dot(xv))) * p.n;
+        wsum += p.weight;
       });
       step[v] = !pinned[v] && wsum > 0 ? Vec3(sum / wsum) : Vec3::Zero();
       scale[v] = 1.0;
-      candidate[v] = x[v] + step[v];
+      candidate[v] = xv + step[v];
     });
 
     parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { bad[f] = !faceOk(f); });

@@ -239,12 +239,13 @@ export interface DenoiseOptions {
    */
   hs?: number;
   /**
-   * Range bandwidth h_r between unit normals; smaller keeps more edges.
+   * Range bandwidth h_r between unit normals; smaller keeps more edges (preset default: candidates
+   * SURE picks from).
    *
-   * Default: `0.35`. Range: > 0 and ≤ 1000000. Where method is 'meanshift' and preset is 'paper':
-   * default `0.45`. Applies only where method is 'meanshift'.
+   * Default: `[0.35, 0.5]`. Range: > 0 and ≤ 1000000 (each value). Where method is 'meanshift' and
+   * preset is 'paper': default `0.45`. Applies only where method is 'meanshift'.
    */
-  hr?: number;
+  hr?: number | number[];
   /**
    * Neighbourhood radius in AEL.
    *

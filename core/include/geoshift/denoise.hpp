@@ -64,7 +64,7 @@ struct DenoiseOptions {
   double strength = 1;
   // Candidate h_r of the face normal shift (chord length between unit normals): smaller keeps more
   // edges, larger smooths organic shapes more evenly. The risk estimate picks one.
-  std::vector<double> rangeBandwidths = {0.35};
+  std::vector<double> rangeBandwidths = {0.35, 0.5};
   FaceNeighborhoodOptions neighborhood;  // r = 1.75 AEL, h_s = 0.6 AEL, on the support
   TaubinOptions supportSmoothing;        // the support the neighbourhoods are found on (10 steps)
   // Candidate Taubin steps before the passes; the risk estimate picks one (and its pass count).
@@ -77,19 +77,18 @@ struct DenoiseOptions {
   std::uint64_t seed = 1;   // of the risk estimate's random probe
   // The risk estimate measures each vertex's error along a normal: that of a copy of the input
   // smoothed by this many Taubin steps (0: the noisy input's own normals, which point off by
-  // about the noise's angle). More steps than the lightest pre-smoothing candidate, so that the
-  // directions do not share that candidate's noise (docs/denoising.md#the-default-pipeline).
-  int riskNormalSmoothing = 6;
+  // about the noise's angle). More steps than the pre-smoothing candidates take, so that the
+  // directions do not share a candidate's noise (docs/denoising.md#the-risk-estimate).
+  int riskNormalSmoothing = 20;
   // The probe of the risk estimate: 1 probes every vertex; d > 1 only vertices at least d edges apart,
   // whose divergence is scaled up to all (docs/denoising.md#the-risk-estimate).
   int probeSpacing = 1;
-  // Rank candidates by cross-validation on held-out vertices (probeSpacing >= 2) instead of Stein's
-  // estimate (docs/denoising.md#the-risk-estimate).
-  bool crossValidation = false;
   // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
   // refined from the candidates (the least variance a good one implies) and they are ranked again
-  // (docs/denoising.md#noise-level-from-the-candidates).
-  bool refineNoise = false;
+  // (docs/denoising.md#the-noise-level).
+  bool refineNoise = true;
+  // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
+  bool halvingRace = true;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
   // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risk
   // (mean squared error along the normals): for evaluations and diagnostics.
@@ -114,7 +113,8 @@ struct DenoiseResult {
   double rangeBandwidth = 0;    // chosen
   int passes = 0;               // chosen
   int passesRun = 0;            // computed, all candidates
-  double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL
+  double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
+                                // 0 when below a tenth of the noise level (not resolved)
   size_t neighborhoodBytes = 0;
   // Paper preset
   double meanIterations = 0;     // of the mean shift, per vertex per pass

@@ -67,5 +67,8 @@ FaceNeighborhoods faceNeighborhoods(const Mesh& support, const FaceNeighborhoodO
 std::vector<Vec3> shiftFaceNormals(const FaceNeighborhoods& hoods, const std::vector<double>& areas,
                                    const std::vector<Vec3>& normals, double rangeBandwidth,
                                    const ParallelOptions& parallel = {}, const Progress& progress = {});
+// The same with the normals and areas of `mesh`'s faces at its positions.
+std::vector<Vec3> shiftFaceNormals(const FaceNeighborhoods& hoods, const Mesh& mesh, double rangeBandwidth,
+                                   const ParallelOptions& parallel = {}, const Progress& progress = {});
 
 }  // namespace geoshift
