@@ -117,8 +117,11 @@ val listPresets() {
   denoise.set("name", std::string("denoise"));
   denoise.set("description", std::string("the default denoiser (docs/denoising.md)"));
   denoise.set("signal", std::string("normal"));
-  for (const char* name : {"strength", "hr", "noise", "passes", "radius", "hs", "vertexIterations", "levels", "alpha"})
+  for (const char* name : {"strength", "noise", "passes", "radius", "hs", "vertexIterations", "levels", "alpha"})
     denoise.set(name, defaults.number(name));
+  // Several candidate h_r by default: the app shows 0 (Auto), which the op reads as those.
+  const std::vector<double> hr = defaults.numbers("hr");
+  denoise.set("hr", hr.size() == 1 ? hr.front() : 0.0);
   list.call<void>("push", denoise);
   return list;
 }

@@ -88,7 +88,9 @@ class Passes {
   }
 
   void pass(Track& t, double rangeBandwidth, DenoiseResult& result) {
-    work_.positions() = t.positions;
+    // The track's positions move into the mesh (the update returns new ones): one copy fewer held
+    // while the update runs, which is when memory peaks.
+    work_.positions() = std::move(t.positions);
     std::vector<Vec3> targets = shiftFaceNormals(hoods_, work_, rangeBandwidth, parallel_);
     VertexUpdateResult u = updateVertices(work_, std::move(targets), *t.update);
     result.limitedSteps += u.limitedSteps;
@@ -148,12 +150,16 @@ class CandidateRace {
   }
 
   void run(Passes& passes, const Progress& progress) {
-    const double total = static_cast<double>(runs_.size()) * o_.maxPasses;
     for (int done = 0;;) {
       bool any = false;
       for (Run& run : runs_) {
         if (!run.active) continue;
-        progress.step(0.1 + 0.9 * std::min(1.0, done / total), "denoise passes");
+        // Done over done plus the most the runs still going can take: it only grows, and it
+        // jumps when the race stops a run.
+        double left = 0;
+        for (const Run& r : runs_)
+          if (r.active) left += o_.maxPasses - r.t;
+        progress.step(0.1 + 0.9 * done / (done + left), "denoise passes");
         passes.pass(run.x, run.rangeBandwidth, result_);
         passes.pass(run.xp, run.rangeBandwidth, result_);
         ++run.t;

@@ -24,6 +24,7 @@ void applyPaper(const ParamRequest& r, DenoiseOptions& o) {
     const std::vector<double> hr = r.numbers("hr");
     if (hr.size() != 1)
       throw InputError("denoise: parameter hr takes one value with preset \"paper\" (got " + std::to_string(hr.size()) + ")");
+    if (!(hr.front() > 0)) throw InputError("denoise: parameter hr must be > 0 with preset \"paper\" (got 0)");
     ms.rangeBandwidth = hr.front();
   }
   if (r.has("radius")) ms.radius = r.number("radius");
@@ -43,7 +44,8 @@ void applyDefault(const ParamRequest& r, DenoiseOptions& o) {
   if (r.has("noise")) o.noiseLevel = r.number("noise");
   if (r.has("strength")) o.strength = r.number("strength");
   if (r.has("hs")) o.neighborhood.spatialBandwidth = r.number("hs");
-  if (r.has("hr")) o.rangeBandwidths = r.numbers("hr");
+  // hr 0 (alone): the default candidates, as noise 0 and passes 0 leave their choice to the denoiser.
+  if (r.has("hr") && r.numbers("hr") != std::vector<double>{0.0}) o.rangeBandwidths = r.numbers("hr");
   if (r.has("radius")) o.neighborhood.radius = r.number("radius");
   if (r.has("passes")) o.fixedPasses = r.integer("passes");
   if (r.has("presmoothing")) {

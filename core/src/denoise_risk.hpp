@@ -19,7 +19,7 @@ struct RiskOptions {
   // 1: every vertex is probed (±1 each). d > 1: only vertices at least d edges apart from each other
   // (chosen greedily in index order), so that the probe's cross terms, which carry its randomness,
   // mostly vanish; the divergence is scaled up from the probed vertices to all.
-  int probeSpacing = 1;
+  int probeSpacing = 5;
 };
 
 // A candidate's risk, in squared length per vertex: `ranked` with σ times the strength (what

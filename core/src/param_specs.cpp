@@ -196,8 +196,8 @@ OpParamSpecs denoiseSpecs() {
                   .byDefault(d.neighborhood.spatialBandwidth).positive(1e6).appliesWhen(meanShift)
                   .inCase(paperPreset, ms.spatialBandwidth),
               P("hr", T::Number,
-                "range bandwidth h_r between unit normals; smaller keeps more edges (preset default: candidates SURE picks from)")
-                  .list().byDefault(d.rangeBandwidths).positive(1e6).appliesWhen(meanShift)
+                "range bandwidth h_r between unit normals; smaller keeps more edges (preset default: candidates SURE picks from; 0: those)")
+                  .list().byDefault(d.rangeBandwidths).range(0, 1e6).appliesWhen(meanShift)
                   .inCase(paperPreset, ms.rangeBandwidth),
               P("radius", T::Number, "neighbourhood radius in AEL")
                   .byDefault(d.neighborhood.radius).positive(1e6).appliesWhen(meanShift)

@@ -67,11 +67,13 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     Vec3 n;
     double offset = 0, weight = 0;
   };
+  // The target normals move into the planes (they do not change between iterations).
   std::vector<Plane> plane(nf);
-  // The cross product of each face at the current positions; faceOk leaves that of the candidate it
-  // checked in checkedCross, which is the current one of the next iteration (every face a halving
-  // touches is checked again after it, so the last check of each face saw its final candidate).
-  std::vector<Vec3> currentCross(nf), checkedCross(nf);
+  for (int f = 0; f < nf; ++f) plane[f].n = target[f];
+  std::vector<Vec3>().swap(target);
+  // Each face's cross product at the current positions, in single precision: only the sign of a
+  // dot product with it is read (its length, the weight, is taken in double when it is computed).
+  std::vector<Eigen::Vector3f> currentCross(nf);
   std::vector<double> scale(nv);
   std::vector<char> halvedThisRound(nv);
   std::vector<int> badFaces, touched;
@@ -80,10 +82,9 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
 
   auto faceOk = [&](int f) {
     const Vec3 c = crossOf(candidate, mesh.face(f));
-    checkedCross[f] = c;
     const bool keepsInputSide = inputNormal[f].squaredNorm() == 0.0f || c.dot(inputNormal[f].cast<double>()) > 0.0 ||
-                                (options.flipGuard == FlipGuard::InputOrTarget && c.dot(target[f]) > 0.0);
-    const bool keepsCurrentSide = currentCross[f].squaredNorm() == 0.0 || c.dot(currentCross[f]) > 0.0;
+                                (options.flipGuard == FlipGuard::InputOrTarget && c.dot(plane[f].n) > 0.0);
+    const bool keepsCurrentSide = (currentCross[f].array() == 0.0f).all() || c.dot(currentCross[f].cast<double>()) > 0.0;
     return keepsInputSide && keepsCurrentSide;
   };
 
@@ -93,16 +94,12 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     // half-edge: a fixed order, so the sums (and so the results) do not depend on the threads.
     // Per face once, not once per corner: its cross product, its weight, and its target plane's
     // offset, so that a corner x_v is pulled by (n·c − n·x_v) n.
-    if (it == 0) {
-      parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { currentCross[f] = crossOf(x, mesh.face(f)); });
-    } else {
-      currentCross.swap(checkedCross);
-    }
     parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
       const Face& t = mesh.face(f);
-      plane[f].n = target[f];
-      plane[f].weight = options.areaWeighted ? 0.5 * currentCross[f].norm() : 1.0;
-      plane[f].offset = target[f].dot((x[t[0]] + x[t[1]] + x[t[2]]) / 3.0);
+      const Vec3 cross = crossOf(x, t);
+      currentCross[f] = cross.cast<float>();
+      plane[f].weight = options.areaWeighted ? 0.5 * cross.norm() : 1.0;
+      plane[f].offset = plane[f].n.dot((x[t[0]] + x[t[1]] + x[t[2]]) / 3.0);
     });
     parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
       Vec3 sum = Vec3::Zero();

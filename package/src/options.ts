@@ -240,9 +240,9 @@ export interface DenoiseOptions {
   hs?: number;
   /**
    * Range bandwidth h_r between unit normals; smaller keeps more edges (preset default: candidates
-   * SURE picks from).
+   * SURE picks from; 0: those).
    *
-   * Default: `[0.35, 0.5]`. Range: > 0 and ≤ 1000000 (each value). Where method is 'meanshift' and
+   * Default: `[0.35, 0.5]`. Range: ≥ 0 and ≤ 1000000 (each value). Where method is 'meanshift' and
    * preset is 'paper': default `0.45`. Applies only where method is 'meanshift'.
    */
   hr?: number | number[];

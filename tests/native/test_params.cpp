@@ -128,7 +128,7 @@ TEST_CASE("a request refuses wrong types, fractions, choices and ranges with the
   CHECK_THAT(refusal("denoise", {{"passes", 1.5}}), Equals("denoise: parameter passes must be a whole number (got 1.5)"));
   CHECK_THAT(refusal("denoise", {{"method", std::string("median")}}),
              Equals("denoise: parameter method = \"median\" is not one of meanshift, bilateral, taubin"));
-  CHECK_THAT(refusal("denoise", {{"hr", -1e-7}}), Equals("denoise: parameter hr is outside (0, 1e+06] (got -1e-07)"));
+  CHECK_THAT(refusal("denoise", {{"hs", -1e-7}}), Equals("denoise: parameter hs is outside (0, 1e+06] (got -1e-07)"));
   CHECK_THAT(refusal("denoise", {{"vertexIterations", 0.0}}),
              Equals("denoise: parameter vertexIterations is outside [1, 10000] (got 0)"));
   CHECK_THAT(refusal("denoise", {{"alpha", Unsupported{}}}), Equals("denoise: parameter alpha must be a number or a list of numbers"));
@@ -152,7 +152,17 @@ TEST_CASE("a denoise request becomes the options of its method, with the options
 
   const ParamRequest defaults(paramSpecsOf("denoise"), {});
   CHECK(defaults.number("hs") == d.neighborhood.spatialBandwidth);
-  CHECK(defaults.number("hr") == d.rangeBandwidths.front());
+  CHECK(defaults.numbers("hr") == d.rangeBandwidths);
+  REQUIRE(d.rangeBandwidths.size() > 1);
+  // hr 0 is "Auto" (the app's slider): the default candidates, as if hr were not given; a list is
+  // taken as given; the paper preset takes one positive h_r.
+  CHECK(denoiseSettings(ParamValues{{"hr", 0.0}}).meanShift.rangeBandwidths == d.rangeBandwidths);
+  CHECK(denoiseSettings(ParamValues{{"hr", std::vector<double>{0.2, 0.6}}}).meanShift.rangeBandwidths ==
+        std::vector<double>{0.2, 0.6});
+  CHECK_THROWS_WITH(denoiseSettings(ParamValues{{"preset", std::string("paper")}, {"hr", 0.0}}),
+                    Catch::Contains("hr must be > 0"));
+  CHECK_THROWS_WITH(denoiseSettings(ParamValues{{"preset", std::string("paper")}, {"hr", std::vector<double>{0.3, 0.4}}}),
+                    Catch::Contains("takes one value"));
   const ParamRequest paper(paramSpecsOf("denoise"), {{"preset", std::string("paper")}});
   CHECK(paper.number("hs") == d.paper.meanShift.spatialBandwidth);
   CHECK(paper.integer("passes") == d.paper.passes);

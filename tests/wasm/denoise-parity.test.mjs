@@ -97,6 +97,7 @@ test('presets() gives the default denoiser\'s settings: sent as parameters they 
   assert.ok(description.length > 0 && signal === 'normal', name);
   assert.equal(params.noise, 0);   // measured on the mesh
   assert.equal(params.passes, 0);  // chosen by SURE
+  assert.equal(params.hr, 0);      // the default candidates, SURE picks one
   const off = path.join(dir, 'box.off');
   writeCoff(off, noisy);
   const r = denoised(geoshift, params);

@@ -108,7 +108,7 @@ export const PRESETS: Preset[] = [
     fixed: { method: 'meanshift' },
     params: [
       num('strength', 'Strength', '× the noise', CORE, 0.25, 4, 0.05, 'How hard to smooth, relative to the noise measured on the mesh (or given below). Above 1 smooths more, below 1 keeps more fine detail.'),
-      num('hr', 'Keep edges', 'normal tolerance', CORE, 0.1, 1, 0.01, 'How different two surface directions may be and still be averaged. Smaller keeps more edges and corners sharp; larger smooths organic shapes more evenly.'),
+      num('hr', 'Keep edges (0 = Auto)', 'normal tolerance', CORE, 0, 1, 0.01, 'How different two surface directions may be and still be averaged. Smaller keeps more edges and corners sharp; larger smooths organic shapes more evenly. 0 lets the risk estimate choose between 0.35 and 0.5.'),
       num('noise', 'Noise level (0 = Auto)', AEL, CORE, 0, 3, 0.01, 'How far the scan points scatter around the true surface. 0 measures it on the mesh; the result panel shows the value found.'),
       expert(num('passes', 'Passes (0 = Auto)', '', CORE, 0, 60, 1, 'Rounds of normal filtering and vertex update. 0 lets the risk estimate choose.')),
       expert(num('radius', 'Neighbourhood radius r', AEL, CORE, 0.5, 10, 0.05, 'How far around each face the normals are averaged.')),

@@ -81,8 +81,9 @@ struct DenoiseOptions {
   // directions do not share a candidate's noise (docs/denoising.md#the-risk-estimate).
   int riskNormalSmoothing = 20;
   // The probe of the risk estimate: 1 probes every vertex; d > 1 only vertices at least d edges apart,
-  // whose divergence is scaled up to all (docs/denoising.md#the-risk-estimate).
-  int probeSpacing = 1;
+  // whose divergence is scaled up to all: fewer of the probe's cross terms, whose signs are its
+  // randomness (docs/denoising.md#the-risk-estimate).
+  int probeSpacing = 5;
   // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
   // refined from the candidates (the least variance a good one implies) and they are ranked again
   // (docs/denoising.md#the-noise-level).

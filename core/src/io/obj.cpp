@@ -15,7 +15,24 @@
 namespace geoshift::io {
 namespace {
 
-void scanVertexLines(const std::string& path, const std::string& text, ObjSource& src) {
+// The numbers after the 'v' of a vertex line (text from just past the keyword to the line's end).
+std::vector<double> vertexValues(std::string_view line, const std::string& path, size_t lineNo, size_t vertex) {
+  std::vector<double> values;
+  std::istringstream in{std::string(line)};
+  for (std::string tok; in >> tok;) {
+    char* stop = nullptr;
+    const double v = std::strtod(tok.c_str(), &stop);
+    if (*stop != '\0')
+      fail(path + ":" + std::to_string(lineNo), "'" + tok + "' is not a number (vertex " + std::to_string(vertex) + ")");
+    values.push_back(v);
+  }
+  return values;
+}
+
+// The vertex lines' ranges into src, their positions and colors (white where a line has none) into
+// the part.
+void scanVertexLines(const std::string& path, const std::string& text, ObjSource& src, std::vector<Vec3>& positions,
+                     std::vector<Vec3>& colors) {
   size_t lineNo = 0;
   for (size_t pos = 0; pos < text.size();) {
     ++lineNo;
@@ -29,30 +46,17 @@ void scanVertexLines(const std::string& path, const std::string& text, ObjSource
     if (keyword("vn")) src.normalLines.emplace_back(s, end);
     if (keyword("f")) src.faceLines.emplace_back(s, end);
     if (keyword("v")) {
-      std::vector<double> values;
-      std::istringstream in(text.substr(s + 2, end - s - 2));
-      for (std::string tok; in >> tok;) {
-        char* stop = nullptr;
-        const double v = std::strtod(tok.c_str(), &stop);
-        if (*stop != '\0')
-          fail(path + ":" + std::to_string(lineNo),
-               "'" + tok + "' is not a number (vertex " + std::to_string(src.vertexLines.size() + 1) + ")");
-        values.push_back(v);
-      }
       const size_t vi = src.vertexLines.size() + 1;  // OBJ numbers vertices from 1
+      const std::vector<double> values = vertexValues(std::string_view(text).substr(s + 2, end - s - 2), path, lineNo, vi);
       if (values.size() < 3)
         fail(path + ":" + std::to_string(lineNo), "expected 3 coordinates for vertex " + std::to_string(vi));
-      ObjVertexLine l;
-      l.begin = s;
-      l.end = end;
-      l.position = Vec3(values[0], values[1], values[2]);
-      if (!l.position.allFinite())
+      const Vec3 position(values[0], values[1], values[2]);
+      if (!position.allFinite())
         fail(path + ":" + std::to_string(lineNo), "vertex " + std::to_string(vi) + " has a non-finite coordinate");
-      if (values.size() >= 6) {
-        l.hasColor = true;
-        l.color = Vec3(values[3], values[4], values[5]);
-      }
-      src.vertexLines.push_back(l);
+      const bool hasColor = values.size() >= 6;
+      src.vertexLines.push_back({s, end, hasColor});
+      positions.push_back(position);
+      colors.push_back(hasColor ? Vec3(values[3], values[4], values[5]) : Vec3::Ones());
     }
     pos = end;
     if (pos < text.size() && text[pos] == '\r') ++pos;
@@ -100,7 +104,11 @@ Document readObj(const std::string& path, const ReadOptions& options) {
     while (!err.empty() && err.back() == '\n') err.pop_back();
     fail(path, "cannot read OBJ: " + err);
   }
-  scanVertexLines(path, src.text, src);
+  MeshPart part;
+  std::vector<Vec3> colors;
+  scanVertexLines(path, src.text, src, part.positions, colors);
+  // The face lines are only rewritten to drop normal references: without vn lines there are none.
+  if (src.normalLines.empty()) std::vector<std::pair<size_t, size_t>>().swap(src.faceLines);
   if (src.vertexLines.size() > options.maxVertices)
     fail(path, "the file has " + std::to_string(src.vertexLines.size()) + " vertices, more than the limit of " +
                    std::to_string(options.maxVertices) + " (raise it with --max-vertices)");
@@ -110,21 +118,16 @@ Document readObj(const std::string& path, const ReadOptions& options) {
     fail(path, "found " + std::to_string(nv) + " 'v' lines but tinyobjloader read " +
                    std::to_string(attrib.vertices.size() / 3) + " vertices (line continuations are not supported)");
 
-  MeshPart part;
   part.label = std::filesystem::path(path).filename().string();
   part.instances.push_back(Eigen::Matrix4d::Identity());
-  part.positions.reserve(nv);
   bool anyColor = false, allColor = true;
   for (const auto& l : src.vertexLines) {
-    part.positions.push_back(l.position);
     anyColor = anyColor || l.hasColor;
     allColor = allColor && l.hasColor;
   }
   if (anyColor) {
     if (!allColor) doc.warnings.push_back(path + ": some vertices have no color; white used for them");
-    for (const auto& l : src.vertexLines)
-      part.colors.emplace_back(l.hasColor ? l.color.x() : 1.0, l.hasColor ? l.color.y() : 1.0,
-                               l.hasColor ? l.color.z() : 1.0, 1.0);
+    for (const Vec3& c : colors) part.colors.emplace_back(c.x(), c.y(), c.z(), 1.0);
   }
 
   // OBJ indexes normals separately; a per-vertex normal exists only if every vertex has exactly one.
@@ -253,8 +256,11 @@ std::vector<std::string> writeObjInto(const Document& document, const std::strin
     const auto& l = src.vertexLines[i];
     const Eigen::Vector4d* color = part.colors.empty() ? nullptr : &part.colors[i];
     // Unchanged vertices keep their text, so a round trip without changes is byte-identical.
-    const bool sameColor = color ? (l.hasColor && color->head<3>() == l.color) : !l.hasColor;
-    if (part.positions[i] == l.position && sameColor) continue;
+    const std::size_t from = l.begin + 1;  // past the keyword
+    const std::vector<double> was = vertexValues(std::string_view(src.text).substr(from, l.end - from), path, 0, i + 1);
+    const bool samePosition = part.positions[i] == Vec3(was[0], was[1], was[2]);
+    const bool sameColor = color ? (l.hasColor && color->head<3>() == Vec3(was[3], was[4], was[5])) : !l.hasColor;
+    if (samePosition && sameColor) continue;
     edits.push_back({l.begin, l.end, vertexLine(part.positions[i], color)});
   }
   if (!part.normals.empty() && part.normals != src.normals) normalEdits(src, part, path, edits, warnings);
