@@ -70,6 +70,7 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["noise_estimated"] = r.noiseEstimated;
     out["presmoothing_steps"] = r.presmoothingSteps;
     out["passes"] = r.passes;
+    out["range_bandwidth"] = r.rangeBandwidth;
     out["passes_run"] = r.passesRun;
     out["estimated_error"] = r.estimatedError;
     out["mean_iterations"] = r.meanIterations;

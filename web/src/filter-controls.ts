@@ -280,7 +280,8 @@ export class FilterControls {
         const level = (estimate.noiseLevel as number).toPrecision(2);
         rows.push(['Noise level', `${level} × AEL${estimate.noiseEstimated === 'yes' ? ' (measured on the mesh)' : ''}`]);
         if (typeof estimate.presmoothingSteps === 'number' && typeof estimate.passes === 'number')
-          rows.push(['Chosen', `${counted(estimate.presmoothingSteps, 'Taubin step')} + ${counted(estimate.passes, 'pass', 'passes')}`]);
+          rows.push(['Chosen', `${counted(estimate.presmoothingSteps, 'Taubin step')} + ${counted(estimate.passes, 'pass', 'passes')}` +
+            (typeof estimate.rangeBandwidth === 'number' && estimate.rangeBandwidth > 0 ? ` at Keep edges ${estimate.rangeBandwidth}` : '')]);
       }
       if (report.error) {
         const pct = (v: number) => `${((100 * v) / Math.max(report.error!.diagonal, 1e-30)).toFixed(3)}%`;
