@@ -179,7 +179,7 @@ def test_param_specs_give_the_options_structs_defaults():
     p = specs["denoise"]["params"]
     assert p["strength"]["default"] == d.strength
     assert p["hs"]["default"] == d.neighborhood.spatial_bandwidth
-    assert p["hr"]["default"] == d.range_bandwidths[0]
+    assert p["hr"]["default"] == list(d.range_bandwidths)  # the candidates SURE picks from
     assert p["passes"]["cases"][0]["default"] == d.paper.passes
     assert p["method"]["values"] == ["meanshift", "bilateral", "taubin"]
     assert specs["smooth"]["params"]["mu"]["default"] == geoshift.TaubinOptions().mu
