@@ -49,9 +49,10 @@ double distance2(const std::vector<double>& guide, int D, int a, int b) {
 // Gaussian of their input distance to o (in units of h_r). False, and o untouched, when every
 // weight underflows against its base (no known neighbour within ~7 h_r).
 bool guidedMean(const std::vector<double>& guide, int D, int o, const std::vector<int>& ring,
-                const std::vector<double>& base, const std::vector<char>& known, std::vector<double>& F) {
+                const std::vector<double>& base, const std::vector<char>& known, std::vector<double>& F,
+                std::vector<double>& w) {
   double total = 0, baseTotal = 0;
-  std::vector<double> w(ring.size(), 0.0);
+  w.assign(ring.size(), 0.0);
   for (size_t q = 0; q < ring.size(); ++q) {
     if (!known[ring[q]]) continue;
     w[q] = base[q] * std::exp(-0.5 * distance2(guide, D, o, ring[q]));
@@ -128,13 +129,13 @@ AttributeSet guidedProlongation(const Multiresolution& mr, const AttributeSet& c
   for (int c : mr.coarseToFine) known[c] = 1;
   std::vector<int> deferred;
   std::vector<int> ring;
-  std::vector<double> base;
+  std::vector<double> base, w;  // w: guidedMean's weights, reused
   for (auto level = mr.levels.rbegin(); level != mr.levels.rend(); ++level) {
     const WaveletLevel& L = *level;
     for (size_t i = 0; i < L.odd.size(); ++i) {
       ring.assign(L.neighbor.begin() + L.offset[i], L.neighbor.begin() + L.offset[i + 1]);
       base.assign(L.predict.begin() + L.offset[i], L.predict.begin() + L.offset[i + 1]);
-      if (guidedMean(guide, D, L.odd[i], ring, base, known, F)) known[L.odd[i]] = 1;
+      if (guidedMean(guide, D, L.odd[i], ring, base, known, F, w)) known[L.odd[i]] = 1;
       else deferred.push_back(L.odd[i]);
     }
   }
@@ -147,7 +148,7 @@ AttributeSet guidedProlongation(const Multiresolution& mr, const AttributeSet& c
       if (known[o]) continue;
       ring = mr.fine.neighbors(o);
       base.assign(ring.size(), 1.0);
-      if (guidedMean(guide, D, o, ring, base, known, F)) known[o] = 1, progress = true;
+      if (guidedMean(guide, D, o, ring, base, known, F, w)) known[o] = 1, progress = true;
     }
   }
   // What is left is unlike every known neighbour (an outlier): the closest of them in the input.

@@ -34,13 +34,21 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     throw InputError("vertex update: iterations must be >= 0 (got " +
                      std::to_string(options.iterations) + ")");
   }
-  std::vector<Vec3> target = std::move(targetNormals);
+  // Per face, what its corners read: its unit target normal with the offset n·c of its target
+  // plane (c the centroid) and its weight, side by side for the gather's memory accesses. The
+  // normals do not change between iterations.
+  struct Plane {
+    Vec3 n;
+    double offset = 0, weight = 0;
+  };
+  std::vector<Plane> plane(nf);
   for (int f = 0; f < nf; ++f) {
-    Vec3& n = target[f];
+    const Vec3& n = targetNormals[f];
     if (!n.allFinite()) throw InputError("vertex update: target normal of face " + std::to_string(f) + " is not finite " + vecText(n));
     const double len = n.norm();
-    n = len > 0 ? Vec3(n / len) : Vec3::Zero();
+    plane[f].n = len > 0 ? Vec3(n / len) : Vec3::Zero();
   }
+  std::vector<Vec3>().swap(targetNormals);
 
   std::vector<char> pinned(nv, 0);
   for (int v = 0; v < nv; ++v)
@@ -61,16 +69,6 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   ParallelOptions par = options.parallel;
   par.chunk = 1024;
   const Progress quiet;  // the iterations report; the parallel loops inside them do not
-  // Per face, what its corners read: its target normal with the offset n·c of its target plane
-  // (c the centroid) and its weight, side by side for the gather's memory accesses.
-  struct Plane {
-    Vec3 n;
-    double offset = 0, weight = 0;
-  };
-  // The target normals move into the planes (they do not change between iterations).
-  std::vector<Plane> plane(nf);
-  for (int f = 0; f < nf; ++f) plane[f].n = target[f];
-  std::vector<Vec3>().swap(target);
   // Each face's cross product at the current positions, in single precision: only the sign of a
   // dot product with it is read (its length, the weight, is taken in double when it is computed).
   std::vector<Eigen::Vector3f> currentCross(nf);
