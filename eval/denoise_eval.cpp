@@ -262,6 +262,7 @@ double printed(double x, int digits) {
 struct Verdict {
   bool win = false;      // both numbers at or below both oracles
   double ratio = 0;      // the larger of ours / best oracle, over the two numbers
+  double rmsRatio = 0, angleRatio = 0;  // each number's ours / best oracle
 };
 
 Verdict verdict(const Score& ours, const Score& taubin, const Score& bilateral) {
@@ -270,7 +271,9 @@ Verdict verdict(const Score& ours, const Score& taubin, const Score& bilateral) 
   const double bestAngle = std::min(printed(taubin.angle, 2), printed(bilateral.angle, 2));
   Verdict v;
   v.win = rms <= bestRms && angle <= bestAngle;
-  v.ratio = std::max(rms / std::max(bestRms, 1e-12), angle / std::max(bestAngle, 1e-12));
+  v.rmsRatio = rms / std::max(bestRms, 1e-12);
+  v.angleRatio = angle / std::max(bestAngle, 1e-12);
+  v.ratio = std::max(v.rmsRatio, v.angleRatio);
   return v;
 }
 
@@ -310,6 +313,21 @@ std::vector<std::uint64_t> parseSeeds(const std::string& text) {
   return out;
 }
 
+// Geometric means of ours / the better oracle, RMS and normal error apart: how far ahead or behind
+// a set is on the whole, which a count of cases won does not tell (a loss by 1% counts as one by
+// 100%). Logs are summed, so a case twice better offsets one twice worse.
+struct RatioMean {
+  double logRms = 0, logAngle = 0;
+  int n = 0;
+  void add(const Verdict& v) {
+    logRms += std::log(std::max(v.rmsRatio, 1e-6));
+    logAngle += std::log(std::max(v.angleRatio, 1e-6));
+    ++n;
+  }
+  double rms() const { return n ? std::exp(logRms / n) : 1.0; }
+  double angle() const { return n ? std::exp(logAngle / n) : 1.0; }
+};
+
 // The tables of one set: every case, then what the set adds up to.
 std::string report(Set set, const std::vector<Result>& results, const std::vector<std::uint64_t>& seeds, bool paper) {
   std::ostringstream s;
@@ -323,18 +341,28 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
     << "| case | noise | vertices | noisy | Taubin, tuned | bilateral, tuned | **geoshift** | ✓ | ratio |"
     << (paper ? " paper preset |" : "") << " GCN-Denoiser | note |\n|---|---|---|---|---|---|---|---|---|"
     << (paper ? "---|" : "") << "---|---|\n";
-  std::map<std::string, std::pair<int, int>> byCategory;  // won, cases
+  struct Category {
+    int won = 0, cases = 0;
+    RatioMean ratios;
+  };
+  std::map<std::string, Category> byCategory;
   std::vector<int> wonPerSeed(seeds.size(), 0);
+  std::vector<RatioMean> ratiosPerSeed(seeds.size());
   int within = 0;
   double worst = 0;
   std::string worstCase;
   std::vector<std::string> misses;
   for (const Result* r : rows) {
     const Verdict v = verdict(r->ours.front(), r->taubin, r->bilateral);
-    for (size_t k = 0; k < seeds.size(); ++k) wonPerSeed[k] += verdict(r->ours[k], r->taubin, r->bilateral).win;
-    auto& cat = byCategory[r->c->category];
-    cat.first += v.win;
-    ++cat.second;
+    for (size_t k = 0; k < seeds.size(); ++k) {
+      const Verdict vk = verdict(r->ours[k], r->taubin, r->bilateral);
+      wonPerSeed[k] += vk.win;
+      ratiosPerSeed[k].add(vk);
+    }
+    Category& cat = byCategory[r->c->category];
+    cat.won += v.win;
+    ++cat.cases;
+    cat.ratios.add(v);
     within += v.ratio <= 1.25;
     if (v.ratio > worst) {
       worst = v.ratio;
@@ -346,17 +374,25 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
       << (v.win ? "✓" : "✗") << " | " << fixed(v.ratio, 2) << " |" << (paper ? " " + pairOf(r->paper) + " |" : "")
       << " " << pairOf(r->gcn) << " | " << r->ours.front().note << " |\n";
   }
-  s << "\n| category | cases | won | |\n|---|---|---|---|\n";
-  for (const auto& [category, counts] : byCategory)
-    s << "| " << category << " | " << counts.second << " | " << counts.first << " | |\n";
+  s << "\n| category | cases | won | RMS ratio | normal ratio |\n|---|---|---|---|---|\n";
+  for (const auto& [category, c] : byCategory)
+    s << "| " << category << " | " << c.cases << " | " << c.won << " | " << fixed(c.ratios.rms(), 3) << " | "
+      << fixed(c.ratios.angle(), 3) << " |\n";
+  s << "\nRMS and normal ratio: geometric means over the cases of ours / the better oracle (below 1: ahead).\n";
   s << "\n**" << setName(set) << ": won " << wonPerSeed.front() << " of " << rows.size() << "** ("
     << fixed(100.0 * wonPerSeed.front() / rows.size(), 1) << "%); within 1.25× of the better oracle in both numbers: "
-    << within << " of " << rows.size() << "; worst ratio " << fixed(worst, 2) << " (" << worstCase << ").\n";
+    << within << " of " << rows.size() << "; worst ratio " << fixed(worst, 2) << " (" << worstCase
+    << "); geometric mean ratio RMS " << fixed(ratiosPerSeed.front().rms(), 3) << ", normal error "
+    << fixed(ratiosPerSeed.front().angle(), 3) << ".\n";
   if (seeds.size() > 1) {
     s << "\nCases won per probe seed:";
     for (size_t k = 0; k < seeds.size(); ++k) s << " " << seeds[k] << ": " << wonPerSeed[k] << (k + 1 < seeds.size() ? "," : "");
     const auto [lo, hi] = std::minmax_element(wonPerSeed.begin(), wonPerSeed.end());
-    s << " (spread " << (*hi - *lo) << ").\n";
+    s << " (spread " << (*hi - *lo) << ").\n\nGeometric mean ratios per probe seed (RMS / normal error):";
+    for (size_t k = 0; k < seeds.size(); ++k)
+      s << " " << seeds[k] << ": " << fixed(ratiosPerSeed[k].rms(), 3) << " / " << fixed(ratiosPerSeed[k].angle(), 3)
+        << (k + 1 < seeds.size() ? "," : "");
+    s << ".\n";
   }
   if (!misses.empty()) {
     s << "\nNot won:";
