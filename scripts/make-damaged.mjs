@@ -135,6 +135,7 @@ const files = {
   'glb-view-outside-buffer.glb': triangleGlb({ edit: (j) => (j.bufferViews[0].byteOffset = 4096) }),
   'glb-stride-too-short.glb': triangleGlb({ edit: (j) => (j.bufferViews[0].byteStride = 8) }),
   'glb-negative-indices.glb': triangleGlb({ edit: (j) => (j.meshes[0].primitives[0].indices = -2) }),
+  'glb-primitives-not-array.glb': triangleGlb({ edit: (j) => (j.meshes[0].primitives = 1) }),
   'glb-missing-accessor.glb': triangleGlb({ edit: (j) => (j.meshes[0].primitives[0].attributes.POSITION = 7) }),
   'glb-signed-indices.glb': triangleGlb({ edit: (j) => (j.accessors[1].componentType = 5122) }),
   'glb-index-past-last-vertex.glb': triangleGlb({ indices: [0, 1, 7] }),

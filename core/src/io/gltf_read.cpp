@@ -34,15 +34,24 @@ std::string meshLabel(const nlohmann::json& meshes, size_t m) {
 
 void checkReferences(const std::string& path, const nlohmann::json& j);
 
+// obj[key] when obj is an object holding an array there, else an empty array: a field of the
+// wrong type ("primitives": 1) is tinygltf's to report, and must not be indexed as an array here.
+const nlohmann::json& arrayAt(const nlohmann::json& obj, const char* key) {
+  static const nlohmann::json empty = nlohmann::json::array();
+  if (!obj.is_object()) return empty;
+  const auto it = obj.find(key);
+  return it != obj.end() && it->is_array() ? *it : empty;
+}
+
 // Compressed content is found in the JSON before tinygltf sees it: tinygltf may fail on a meshopt
 // fallback buffer without a URI, which would hide the real reason.
 void checkJson(const std::string& path, const std::string& jsonText) {
   const auto j = nlohmann::json::parse(jsonText, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return;  // tinygltf reports the syntax error
-  const auto meshes = j.value("meshes", nlohmann::json::array());
+  const auto& meshes = arrayAt(j, "meshes");
   for (size_t m = 0; m < meshes.size(); ++m) {
     if (!meshes[m].is_object()) continue;
-    const auto prims = meshes[m].value("primitives", nlohmann::json::array());
+    const auto& prims = arrayAt(meshes[m], "primitives");
     for (size_t p = 0; p < prims.size(); ++p) {
       if (!prims[p].is_object() || !prims[p].contains("extensions")) continue;
       for (const auto& [ext, v] : prims[p]["extensions"].items())
@@ -51,7 +60,7 @@ void checkJson(const std::string& path, const std::string& jsonText) {
                          kCompressedHint);
     }
   }
-  const auto views = j.value("bufferViews", nlohmann::json::array());
+  const auto& views = arrayAt(j, "bufferViews");
   for (size_t v = 0; v < views.size(); ++v) {
     if (!views[v].is_object() || !views[v].contains("extensions")) continue;
     for (const auto& [ext, val] : views[v]["extensions"].items())
@@ -59,7 +68,7 @@ void checkJson(const std::string& path, const std::string& jsonText) {
         fail(path, "buffer view " + std::to_string(v) + " uses " + ext + kCompressedHint);
   }
   for (const char* key : {"extensionsRequired", "extensionsUsed"})
-    for (const auto& ext : j.value(key, nlohmann::json::array()))
+    for (const auto& ext : arrayAt(j, key))
       if (ext.is_string() && isCompression(ext.get<std::string>()))
         fail(path, "the file declares " + ext.get<std::string>() + " in " + key + kCompressedHint);
   checkReferences(path, j);
@@ -69,14 +78,19 @@ void checkJson(const std::string& path, const std::string& jsonText) {
 // tinygltf reads such fields without checking them (a negative `indices` would read as "no
 // indices"), so they are checked here, on the JSON, with the referring object named.
 void checkReferences(const std::string& path, const nlohmann::json& j) {
-  auto arr = [&](const char* key) {
-    const auto it = j.find(key);
-    return it != j.end() && it->is_array() ? *it : nlohmann::json::array();
+  // The top-level lists and a mesh's primitives are arrays (schema); tinygltf would read another
+  // type as "none" and the file as one without triangles, hiding what is wrong.
+  auto arr = [&](const nlohmann::json& obj, const char* key, const std::string& where) -> const nlohmann::json& {
+    if (obj.is_object() && obj.contains(key) && !obj[key].is_array())
+      fail(path, where + key + " is " + obj[key].dump().substr(0, 40) + ", not an array");
+    return arrayAt(obj, key);
   };
-  const nlohmann::json meshes = arr("meshes"), accessors = arr("accessors"), views = arr("bufferViews"),
-                       buffers = arr("buffers"), nodes = arr("nodes"), scenes = arr("scenes"),
-                       materials = arr("materials"), images = arr("images"), textures = arr("textures"),
-                       samplers = arr("samplers"), cameras = arr("cameras"), skins = arr("skins");
+  const nlohmann::json &meshes = arr(j, "meshes", ""), &accessors = arr(j, "accessors", ""),
+                       &views = arr(j, "bufferViews", ""), &buffers = arr(j, "buffers", ""),
+                       &nodes = arr(j, "nodes", ""), &scenes = arr(j, "scenes", ""),
+                       &materials = arr(j, "materials", ""), &images = arr(j, "images", ""),
+                       &textures = arr(j, "textures", ""), &samplers = arr(j, "samplers", ""),
+                       &cameras = arr(j, "cameras", ""), &skins = arr(j, "skins", "");
   auto check = [&](const nlohmann::json& v, const std::string& what, const nlohmann::json& targets,
                    const char* kind) {
     const std::string have = " (the file has " + std::to_string(targets.size()) + " " + kind + ")";
@@ -98,8 +112,7 @@ void checkReferences(const std::string& path, const nlohmann::json& j) {
       check(obj[key][i], what + " " + key + "[" + std::to_string(i) + "]", targets, kind);
   };
   for (size_t m = 0; m < meshes.size(); ++m) {
-    if (!meshes[m].is_object() || !meshes[m].contains("primitives") || !meshes[m]["primitives"].is_array()) continue;
-    const auto& prims = meshes[m]["primitives"];
+    const auto& prims = arr(meshes[m], "primitives", meshLabel(meshes, m) + " ");
     for (size_t p = 0; p < prims.size(); ++p) {
       const std::string what = meshLabel(meshes, m) + " primitive " + std::to_string(p);
       field(prims[p], "indices", what, accessors, "accessors");
