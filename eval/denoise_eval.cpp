@@ -159,7 +159,7 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, radius;
+  std::optional<double> strength, radius, impulseShrink, impulseKurtosis;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing;
   std::optional<bool> refineNoise, halving;
   bool trace = false, trueNoise = false;
@@ -169,6 +169,8 @@ struct WhatIf {
 
   void apply(DenoiseOptions& o) const {
     if (strength) o.strength = *strength;
+    if (impulseShrink) o.impulseShrink = *impulseShrink;
+    if (impulseKurtosis) o.impulseKurtosis = *impulseKurtosis;
     if (radius) o.neighborhood.radius = *radius;
     if (maxPasses) o.maxPasses = *maxPasses;
     if (vertexIterations) o.vertexIterations = *vertexIterations;
@@ -246,7 +248,8 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
   } else {
     note << "σ " << r.noiseLevel << " AEL; Taubin " << r.presmoothingSteps << " + " << r.passes << " passes"
          << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "")
-         << (o.fixedPasses > 0 ? " (fixed)" : "") << " (" << r.passesRun << " computed)";
+         << (o.fixedPasses > 0 ? " (fixed)" : "") << (r.impulseGarrote ? ", impulse garrote" : "") << " ("
+         << r.passesRun << " computed)";
   }
   return scoreOf(c, m.positions(), note.str(), ms);
 }
@@ -425,7 +428,8 @@ int usage(const char* error) {
          "  --oracles-only     only fill the oracles' cache (no denoiser, no report)\n"
          "  --noise-estimate   only the estimated against the true noise level of each case\n"
          "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience,\n"
-         "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --halving on|off\n"
+         "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --halving on|off,\n"
+         "  --impulse-shrink, --impulse-kurtosis\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors (slow)\n"
          "  --true-noise       the denoiser is given the true noise level (an oracle experiment)\n"
@@ -470,6 +474,8 @@ int main(int argc, char** argv) {
       else if (a == "--seeds") seeds = parseSeeds(value());
       else if (a == "--jobs") jobs = std::max(1, std::stoi(value()));
       else if (a == "--strength") whatIf.strength = std::stod(value());
+      else if (a == "--impulse-shrink") whatIf.impulseShrink = std::stod(value());
+      else if (a == "--impulse-kurtosis") whatIf.impulseKurtosis = std::stod(value());
       else if (a == "--max-passes") whatIf.maxPasses = std::stoi(value());
       else if (a == "--presmoothing") whatIf.presmoothing = list([](const std::string& s) { return std::stoi(s); });
       else if (a == "--hr") whatIf.range = list([](const std::string& s) { return std::stod(s); });

@@ -39,6 +39,36 @@ void validate(const DenoiseOptions& o) {
   if (o.vertexIterations < 1 || o.vertexIterations > 10000)
     bad("vertex iterations must be in [1, 10000] (got " + std::to_string(o.vertexIterations) + ")");
   if (o.probeSpacing < 1 || o.probeSpacing > 100) bad("probe spacing must be in [1, 100] edges (got " + std::to_string(o.probeSpacing) + ")");
+  if (!(o.impulseKurtosis > 0) || !std::isfinite(o.impulseKurtosis))
+    bad("impulse kurtosis must be > 0 (got " + std::to_string(o.impulseKurtosis) + ")");
+  if (!(o.impulseShrink >= 0) || !std::isfinite(o.impulseShrink))
+    bad("impulse shrink must be >= 0 (0: never; got " + std::to_string(o.impulseShrink) + ")");
+}
+
+// docs/denoising.md#impulsive-noise. The kurtosis E[d⁴] / E[d²]² of the displacement x − y along N
+// over the vertices that have an N: about 3 when every vertex moved by Gaussian noise is pulled
+// back, about 1 / (share moved) when only a few were.
+double displacementKurtosis(const std::vector<Vec3>& input, const std::vector<Vec3>& x, const std::vector<Vec3>& normals) {
+  double m2 = 0, m4 = 0, count = 0;
+  for (size_t v = 0; v < x.size(); ++v) {
+    if (normals[v].squaredNorm() == 0) continue;
+    const double d = (x[v] - input[v]).dot(normals[v]);
+    m2 += d * d;
+    m4 += d * d * d * d;
+    ++count;
+  }
+  return m2 > 0 ? m4 * count / (m2 * m2) : 0.0;
+}
+
+// The non-negative garrote of each displacement: x − y scaled by max(0, 1 − τ²/d²), d its length
+// along N. A vertex without an N keeps its displacement.
+void garrote(const std::vector<Vec3>& input, std::vector<Vec3>& x, const std::vector<Vec3>& normals, double tau) {
+  for (size_t v = 0; v < x.size(); ++v) {
+    if (normals[v].squaredNorm() == 0) continue;
+    const double d = (x[v] - input[v]).dot(normals[v]);
+    const double scale = d * d > tau * tau ? 1 - tau * tau / (d * d) : 0.0;
+    x[v] = input[v] + scale * (x[v] - input[v]);
+  }
 }
 
 // One copy of the mesh being denoised: its positions and the face normals its guard refers to.
@@ -337,15 +367,21 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   // winner that set the refined noise level has an estimate of zero by construction.
   const double error = std::sqrt(std::max(0.0, winnerRisk.positionUnbiased));
   result.estimatedError = error >= 0.1 * finalSigma ? error / ael : 0.0;
+  std::vector<Vec3> x;
   if (chosen != race.bestIndex()) {
-    Track x{input, &inputUpdate};
-    passes.presmooth(x, winner.steps);
-    for (int t = 0; t < winner.passes; ++t) passes.pass(x, winner.rangeBandwidth, result);
-    mesh.positions() = std::move(x.positions);
-    restore.armed = false;
-    return finish();
+    Track track{input, &inputUpdate};
+    passes.presmooth(track, winner.steps);
+    for (int t = 0; t < winner.passes; ++t) passes.pass(track, winner.rangeBandwidth, result);
+    x = std::move(track.positions);
+  } else {
+    x = race.takeBest();
   }
-  mesh.positions() = race.takeBest();
+  result.displacementKurtosis = displacementKurtosis(input, x, risk.normals());
+  if (o.impulseShrink > 0 && result.displacementKurtosis > o.impulseKurtosis) {
+    garrote(input, x, risk.normals(), o.impulseShrink * finalSigma);
+    result.impulseGarrote = true;
+  }
+  mesh.positions() = std::move(x);
   restore.armed = false;
   return finish();
 }

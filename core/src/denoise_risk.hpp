@@ -52,6 +52,8 @@ class RiskEstimate {
   // m − 2 div <= m / 2 (a light candidate says nothing).
   double impliedVariance(const RiskSums& s) const;
 
+  // N at every vertex; zero where a vertex has none (not measured).
+  const std::vector<Vec3>& normals() const { return normals_; }
   double strength() const { return strength_; }
   int probedVertices() const { return probed_; }
 

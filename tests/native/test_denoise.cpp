@@ -76,6 +76,38 @@ TEST_CASE("default denoising of a noisy CAD block removes the noise and keeps th
   }
 }
 
+// Impulsive noise (10% of the vertices moved, N(0, 0.5 AEL)) is told from Gaussian noise by the
+// kurtosis of the winner's displacement; the garrote then leaves the vertices the noise did not touch
+// closer to where they were, and the result is nearer the clean sphere than without it.
+TEST_CASE("impulsive noise is recognised and the untouched vertices mostly stay", "[denoise][impulsive]") {
+  const Mesh clean = build(shapes::icosphere(4));
+  const Mesh impulsive = withNoise(clean, 0.5, 6, NoiseDistribution::Impulsive);
+  Mesh with = impulsive, without = impulsive;
+  const DenoiseResult r = denoise(with);
+  DenoiseOptions off;
+  off.impulseShrink = 0;
+  const DenoiseResult r0 = denoise(without, off);
+  INFO("kurtosis " << r.displacementKurtosis << "; RMS noisy " << rmsTo(impulsive, clean) << ", without "
+                   << rmsTo(without, clean) << ", with " << rmsTo(with, clean));
+  REQUIRE(r.impulseGarrote);
+  REQUIRE_FALSE(r0.impulseGarrote);
+  REQUIRE(r.displacementKurtosis == Approx(r0.displacementKurtosis));
+  REQUIRE(r.displacementKurtosis > 6);
+  REQUIRE(rmsTo(with, clean) < rmsTo(without, clean));
+  // Every vertex moved along its displacement by a factor in [0, 1]: none goes further than without.
+  for (int v = 0; v < clean.vertexCount(); ++v) {
+    const Vec3 full = without.position(v) - impulsive.position(v), part = with.position(v) - impulsive.position(v);
+    REQUIRE(part.norm() <= full.norm() + 1e-12);
+    REQUIRE(part.dot(full) >= -1e-12);
+  }
+  // Gaussian noise everywhere: the kurtosis stays near 3 and nothing is shrunk.
+  Mesh gaussian = withNoise(clean, 0.3, 6, NoiseDistribution::Gaussian);
+  const DenoiseResult rg = denoise(gaussian);
+  INFO("Gaussian: kurtosis " << rg.displacementKurtosis);
+  REQUIRE_FALSE(rg.impulseGarrote);
+  REQUIRE(rg.displacementKurtosis < 6);
+}
+
 // SURE is an unbiased estimate of the error: the pass count it picks must be close to the best one
 // in hindsight, found here by running every count and measuring against the clean mesh.
 TEST_CASE("the passes SURE picks are nearly the best in hindsight", "[denoise][sure]") {
@@ -201,6 +233,8 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.presmoothing.clear(); }, "no presmoothing candidate");
   refuses([](DenoiseOptions& o) { o.neighborhood.radius = 0; }, "radius 0");
   refuses([](DenoiseOptions& o) { o.maxPasses = 0; }, "no passes");
+  refuses([](DenoiseOptions& o) { o.impulseShrink = -0.5; }, "negative impulse shrink");
+  refuses([](DenoiseOptions& o) { o.impulseKurtosis = std::nan(""); }, "NaN impulse kurtosis");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.passes = 0; }, "paper: no passes");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.meanShift.spatialBandwidth = 0; }, "paper: h_s 0");
 

@@ -90,6 +90,13 @@ struct DenoiseOptions {
   bool refineNoise = true;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
+  // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the
+  // winner's displacement along N exceeds impulseKurtosis (Gaussian noise: about 3), each vertex
+  // keeps its displacement d scaled by max(0, 1 − τ²/d²), τ = impulseShrink σ (a non-negative
+  // garrote): the outliers are corrected, the vertices the noise left alone mostly stay where they
+  // are (docs/denoising.md#impulsive-noise). impulseShrink 0: never.
+  double impulseKurtosis = 6;
+  double impulseShrink = 0.5;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
   // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risk
   // (mean squared error along the normals): for evaluations and diagnostics.
@@ -114,6 +121,8 @@ struct DenoiseResult {
   double rangeBandwidth = 0;    // chosen
   int passes = 0;               // chosen
   int passesRun = 0;            // computed, all candidates
+  double displacementKurtosis = 0;  // of the winner's displacement along N (impulseKurtosis)
+  bool impulseGarrote = false;  // the displacement was shrunk as for impulsive noise
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
                                 // 0 when below a tenth of the noise level (not resolved)
   size_t neighborhoodBytes = 0;
