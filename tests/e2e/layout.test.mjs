@@ -64,8 +64,11 @@ test('every slider track is at least 160 px wide and no label or choice is cut o
   const widths = [];
   for (const preset of presets) {
     await page.getByTestId('preset-select').selectOption(preset);
-    // The folded expert settings count too.
+    // The folded expert settings count too. lil-gui unfolds a folder on the animation frame after the
+    // click (its class changes there, then a transition runs): measured once none is folded or moving,
+    // or a busy machine measures the folder still closed (0 px).
     for (const title of await page.locator('[data-testid="params"] .lil-gui.lil-closed > .lil-title').all()) await title.click();
+    await page.waitForFunction(() => !document.querySelector('[data-testid="params"] .lil-gui.lil-closed, [data-testid="params"] .lil-gui.lil-transition'));
     const found = await page.locator('[data-testid="params"]').evaluate((root) => ({
       sliders: [...root.querySelectorAll('[data-param] .lil-slider')].map((s) => [s.closest('[data-param]').dataset.param, s.getBoundingClientRect().width]),
       cut: [...root.querySelectorAll('.lil-name, .lil-display')].filter((e) => e.scrollWidth > e.clientWidth + 1 || e.scrollHeight > e.clientHeight + 1).map((e) => e.textContent),
