@@ -47,6 +47,8 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
     else
       line << "too small to resolve";
     line << ", " << r.passesRun << " passes computed)";
+    // docs/denoising.md#impulsive-noise
+    if (r.impulseGarrote) line << "; the noise looks impulsive: outliers corrected, the other vertices mostly kept";
   }
   line << ", " << r.threads << " threads";
   std::cerr << line.str() << "\n";

@@ -31,6 +31,7 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("rangeBandwidth", r.rangeBandwidth);
       out.stats.set("passesRun", r.passesRun);
       out.stats.set("estimatedError", r.estimatedError);
+      out.stats.set("impulseGarrote", r.impulseGarrote ? "yes" : "no");
     }
     out.stats.set("limitedSteps", r.limitedSteps);
     out.stats.set("threads", r.threads);

@@ -123,6 +123,8 @@ class DenoiseOptions:
     patience: int
     fixed_passes: int
     vertex_iterations: int
+    impulse_kurtosis: float
+    impulse_shrink: float
     seed: int
     threads: int
     paper: PaperDenoiseOptions
@@ -130,10 +132,11 @@ class DenoiseOptions:
     alpha: List[float]
     wavelet: WaveletOptions
     def __init__(self, *, preset: Literal["default", "paper"] = "default", noise_level: float = 0.0,
-                 strength: float = 1.0, range_bandwidths: Sequence[float] = (0.35,),
+                 strength: float = 1.0, range_bandwidths: Sequence[float] = (0.35, 0.5),
                  neighborhood: Union[FaceNeighborhoodOptions, dict, None] = None,
                  support_smoothing: Union[TaubinOptions, dict, None] = None, presmoothing: Sequence[int] = (3, 15),
                  max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
+                 impulse_kurtosis: float = 6.0, impulse_shrink: float = 0.5,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
                  levels: int = 0, alpha: Sequence[float] = (0.0,),
                  wavelet: Union[WaveletOptions, dict, None] = None) -> None: ...

@@ -73,6 +73,7 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["range_bandwidth"] = r.rangeBandwidth;
     out["passes_run"] = r.passesRun;
     out["estimated_error"] = r.estimatedError;
+    out["impulse_garrote"] = r.impulseGarrote;
     out["mean_iterations"] = r.meanIterations;
     out["converged_fraction"] = r.convergedFraction;
     out["limited_steps"] = r.limitedSteps;

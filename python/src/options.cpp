@@ -207,6 +207,8 @@ void bindOptions(py::module_& m) {
       .def_readwrite("patience", &DenoiseOptions::patience)
       .def_readwrite("fixed_passes", &DenoiseOptions::fixedPasses)
       .def_readwrite("vertex_iterations", &DenoiseOptions::vertexIterations)
+      .def_readwrite("impulse_kurtosis", &DenoiseOptions::impulseKurtosis)
+      .def_readwrite("impulse_shrink", &DenoiseOptions::impulseShrink)
       .def_readwrite("seed", &DenoiseOptions::seed)
       .def_readwrite("threads", &DenoiseOptions::threads)
       .def_readwrite("paper", &DenoiseOptions::paper)

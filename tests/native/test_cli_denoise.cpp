@@ -32,6 +32,23 @@ TEST_CASE("cli: denoise reports an estimated error too small to resolve in words
   CHECK_THAT(r.err, !Catch::Contains("estimated error 0 AEL"));
 }
 
+// Impulsive noise (a tenth of the vertices moved) is recognised and said; noise on every vertex is not
+// (docs/denoising.md#impulsive-noise).
+TEST_CASE("cli: denoise says when the noise looks impulsive", "[cli][denoise]") {
+  const fs::path dir = tempDir("cli-denoise-impulsive");
+  writeOff(dir / "clean.off", shapes::icosphere(4));
+  const std::string said = "the noise looks impulsive: outliers corrected, the other vertices mostly kept";
+  REQUIRE(geoshiftCli("noise " + q(dir / "clean.off") + " -o " + q(dir / "spikes.off") + " --amount 0.5 --dist impulsive --seed 6").code == 0);
+  Run r = geoshiftCli("denoise " + q(dir / "spikes.off") + " -o " + q(dir / "out.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains(said));
+  CHECK(rmsToClean(dir / "out.off", dir / "clean.off") < 0.2 * rmsToClean(dir / "spikes.off", dir / "clean.off"));
+  REQUIRE(geoshiftCli("noise " + q(dir / "clean.off") + " -o " + q(dir / "gauss.off") + " --amount 0.3 --dist gaussian --seed 6").code == 0);
+  r = geoshiftCli("denoise " + q(dir / "gauss.off") + " -o " + q(dir / "out2.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, !Catch::Contains(said));
+}
+
 TEST_CASE("cli: denoise removes noise with every method and says what it did", "[cli][denoise]") {
   const fs::path dir = tempDir("cli-denoise");
   const TriangleSoup clean = shapes::box(12, 10, 8, Vec3(1.0, 0.8, 0.6));

@@ -183,3 +183,21 @@ def test_param_specs_give_the_options_structs_defaults():
     assert p["passes"]["cases"][0]["default"] == d.paper.passes
     assert p["method"]["values"] == ["meanshift", "bilateral", "taubin"]
     assert specs["smooth"]["params"]["mu"]["default"] == geoshift.TaubinOptions().mu
+
+
+def test_denoise_says_when_the_noise_looks_impulsive(terrain):
+    """A tenth of the vertices moved (docs/denoising.md#impulsive-noise): the garrote fires, and
+    shrinks each vertex's move; impulse_shrink=0 turns it off."""
+    p, f = terrain.positions, terrain.faces
+    ael = np.mean(np.linalg.norm(p[f[:, [1, 2, 0]]] - p[f], axis=2))
+    rng = np.random.default_rng(6)
+    noisy = terrain.copy()
+    moved = rng.random(len(p)) < 0.1
+    noisy.positions = p + np.outer(moved * rng.normal(0, 0.5 * ael, len(p)), [0, 0, 1])
+    on = geoshift.denoise(noisy)
+    off = geoshift.denoise(noisy, impulse_shrink=0)
+    assert on.stats["impulse_garrote"] is True
+    assert off.stats["impulse_garrote"] is False
+    full = off.mesh.positions - noisy.positions
+    part = on.mesh.positions - noisy.positions
+    assert np.all(np.linalg.norm(part, axis=1) <= np.linalg.norm(full, axis=1) + 1e-9)

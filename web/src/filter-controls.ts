@@ -281,7 +281,8 @@ export class FilterControls {
         rows.push(['Noise level', `${level} × AEL${estimate.noiseEstimated === 'yes' ? ' (measured on the mesh)' : ''}`]);
         if (typeof estimate.presmoothingSteps === 'number' && typeof estimate.passes === 'number')
           rows.push(['Chosen', `${counted(estimate.presmoothingSteps, 'Taubin step')} + ${counted(estimate.passes, 'pass', 'passes')}` +
-            (typeof estimate.rangeBandwidth === 'number' && estimate.rangeBandwidth > 0 ? ` at Keep edges ${estimate.rangeBandwidth}` : '')]);
+            (typeof estimate.rangeBandwidth === 'number' && estimate.rangeBandwidth > 0 ? ` at Keep edges ${estimate.rangeBandwidth}` : '') +
+            (estimate.impulseGarrote === 'yes' ? '; impulsive noise: only the outliers moved' : '')]);
       }
       if (report.error) {
         const pct = (v: number) => `${((100 * v) / Math.max(report.error!.diagonal, 1e-30)).toFixed(3)}%`;
