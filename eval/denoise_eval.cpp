@@ -161,7 +161,7 @@ struct OracleCache {
 struct WhatIf {
   std::optional<double> strength, radius, impulseShrink, impulseKurtosis;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing;
-  std::optional<bool> refineNoise, halving;
+  std::optional<bool> refineNoise, halving, boundedDivergence;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
   std::vector<int> presmoothing;
@@ -182,6 +182,7 @@ struct WhatIf {
     if (probeSpacing) o.probeSpacing = *probeSpacing;
     if (refineNoise) o.refineNoise = *refineNoise;
     if (halving) o.halvingRace = *halving;
+    if (boundedDivergence) o.boundedDivergence = *boundedDivergence;
   }
 };
 
@@ -429,7 +430,7 @@ int usage(const char* error) {
          "  --noise-estimate   only the estimated against the true noise level of each case\n"
          "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience,\n"
          "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --halving on|off,\n"
-         "  --impulse-shrink, --impulse-kurtosis\n"
+         "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors (slow)\n"
          "  --true-noise       the denoiser is given the true noise level (an oracle experiment)\n"
@@ -489,6 +490,7 @@ int main(int argc, char** argv) {
       else if (a == "--true-noise") whatIf.trueNoise = true;
       else if (a == "--refine-noise") whatIf.refineNoise = value() != "off";
       else if (a == "--halving") whatIf.halving = value() != "off";
+      else if (a == "--bounded-divergence") whatIf.boundedDivergence = value() != "off";
       else if (a == "--cache") cache.dir = value();
       else if (a == "--no-cache") cache.dir.clear();
       else if (a == "--markdown") markdownPath = value();

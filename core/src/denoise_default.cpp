@@ -322,6 +322,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   riskOptions.taubin = o.supportSmoothing;
   riskOptions.seed = o.seed;
   riskOptions.probeSpacing = o.probeSpacing;
+  riskOptions.boundedDivergence = o.boundedDivergence;
   const RiskEstimate risk(mesh, input, raceSigma, o.strength, riskOptions);
   std::vector<Vec3> probed = risk.probedInput();
   const VertexUpdateOptions probedUpdate = passes.updateFrom(probed);

@@ -3,7 +3,9 @@
 // With y the input, x = D(y) a candidate, N fixed directions, e = (x − y)·N per vertex and the noise
 // along N of variance σ² per vertex, Stein's lemma gives
 //   E[|(x − x*)·N|²] = E[|e|²] − mσ² + 2σ² E[tr J],  J = ∂(x·N)/∂(y·N),
-// and tr J ≈ bᵀ (x' − x)·N / ε for a ±1 probe b, x' = D(y + ε b N).
+// and tr J ≈ bᵀ (x' − x)·N / ε for a ±1 probe b, x' = D(y + ε b N). With boundedDivergence each
+// probed vertex's term b_i (x'_i − x_i)·N_i / ε is kept within [0, 1], the range of a smoother's own
+// derivative J_ii: a larger one is a jump, not a derivative (docs/denoising.md#the-risk-estimate).
 #include "denoise_risk.hpp"
 
 #include <algorithm>
@@ -54,7 +56,8 @@ std::vector<char> spacedVertices(const Mesh& mesh, const std::vector<Vec3>& norm
 
 RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double sigma, double strength,
                            const RiskOptions& options)
-    : input_(input), sigma_(sigma), strength_(strength), eps_(0.01 * sigma * strength) {
+    : input_(input), sigma_(sigma), strength_(strength), eps_(0.01 * sigma * strength),
+      boundedDivergence_(options.boundedDivergence) {
   const int n = work.vertexCount();
   work.positions() = input;
   if (options.normalSmoothing > 0) {
@@ -89,11 +92,13 @@ RiskSums RiskEstimate::sums(const std::vector<Vec3>& x, const std::vector<Vec3>&
   for (size_t v = 0; v < x.size(); ++v) {
     const double e = (x[v] - input_[v]).dot(normals_[v]);
     fit += e * e;
-    div += probe_[v] * (xp[v] - x[v]).dot(normals_[v]);
+    if (probe_[v] == 0) continue;
+    const double term = probe_[v] * (xp[v] - x[v]).dot(normals_[v]) / eps_;
+    div += boundedDivergence_ ? std::clamp(term, 0.0, 1.0) : term;
   }
   // The probe covers probed_ of the measured_ vertices: the trace is scaled up to all of them.
   const double scale = probed_ > 0 ? static_cast<double>(measured_) / probed_ : 0.0;
-  return {fit, div * scale / eps_};
+  return {fit, div * scale};
 }
 
 Risk RiskEstimate::at(const RiskSums& r, double sigma) const {

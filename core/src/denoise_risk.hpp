@@ -20,6 +20,11 @@ struct RiskOptions {
   // (chosen greedily in index order), so that the probe's cross terms, which carry its randomness,
   // mostly vanish; the divergence is scaled up from the probed vertices to all.
   int probeSpacing = 5;
+  // Each probed vertex's divergence term kept within [0, 1]: a discrete decision (the vertex
+  // update's flip guard) that goes one way for the input and the other for the probed copy makes
+  // the difference quotient a jump of ±(step / ε), which would swing the risk by far more than the
+  // candidates differ (docs/denoising.md#the-risk-estimate).
+  bool boundedDivergence = true;
 };
 
 // A candidate's risk, in squared length per vertex: `ranked` with σ times the strength (what
@@ -62,6 +67,7 @@ class RiskEstimate {
   std::vector<Vec3> normals_;       // N; zero where a vertex has none (not measured)
   std::vector<signed char> probe_;  // b: ±1 at probed vertices, else 0
   double sigma_ = 0, strength_ = 1, eps_ = 0;
+  bool boundedDivergence_ = true;
   int measured_ = 0, probed_ = 0;
 };
 

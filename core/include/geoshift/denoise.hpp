@@ -84,6 +84,11 @@ struct DenoiseOptions {
   // whose divergence is scaled up to all: fewer of the probe's cross terms, whose signs are its
   // randomness (docs/denoising.md#the-risk-estimate).
   int probeSpacing = 5;
+  // Each probed vertex's part of the divergence is kept within [0, 1], the range of a smoother's
+  // derivative at its own vertex: a larger one comes from a discrete decision (the flip guard) that
+  // went one way for the input and the other for the probe, a jump that would swing the risk
+  // (docs/denoising.md#the-risk-estimate). false: the raw difference quotient.
+  bool boundedDivergence = true;
   // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
   // refined from the candidates (the least variance a good one implies) and they are ranked again
   // (docs/denoising.md#the-noise-level).
