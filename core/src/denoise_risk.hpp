@@ -20,8 +20,8 @@ struct RiskOptions {
   // (chosen greedily in index order), so that the probe's cross terms, which carry its randomness,
   // mostly vanish; the divergence is scaled up from the probed vertices to all.
   int probeSpacing = 5;
-  // Each probed vertex's divergence term kept within [0, 1]: a discrete decision (the vertex
-  // update's flip guard) that goes one way for the input and the other for the probed copy makes
+  // Each probed vertex's divergence term kept within [0, 1]: a discrete decision (such as the
+  // vertex update's flip guard) that goes one way for the input and the other for the probed copy makes
   // the difference quotient a jump of ±(step / ε), which would swing the risk by far more than the
   // candidates differ (docs/denoising.md#the-risk-estimate).
   bool boundedDivergence = true;

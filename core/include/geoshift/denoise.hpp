@@ -85,7 +85,7 @@ struct DenoiseOptions {
   // randomness (docs/denoising.md#the-risk-estimate).
   int probeSpacing = 5;
   // Each probed vertex's part of the divergence is kept within [0, 1], the range of a smoother's
-  // derivative at its own vertex: a larger one comes from a discrete decision (the flip guard) that
+  // derivative at its own vertex: a larger one comes from a discrete decision (such as the flip guard's) that
   // went one way for the input and the other for the probe, a jump that would swing the risk
   // (docs/denoising.md#the-risk-estimate). false: the raw difference quotient.
   bool boundedDivergence = true;
