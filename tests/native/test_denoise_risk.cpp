@@ -25,14 +25,22 @@ std::vector<Vec3> taubin(Mesh& work, const std::vector<Vec3>& start, int steps) 
   return work.positions();
 }
 
+// An icosphere with Gaussian noise of 0.3 AEL along its normals, and a mesh to compute on.
+struct NoisySphere {
+  explicit NoisySphere(std::uint64_t seed)
+      : noisy(withNoise(buildMesh(shapes::icosphere(3)).mesh, 0.3, seed)), input(noisy.positions()),
+        sigma(0.3 * averageEdgeLength(noisy)), work(noisy) {}
+  Mesh noisy;
+  std::vector<Vec3> input;
+  double sigma;
+  Mesh work;
+};
+
 }  // namespace
 
 TEST_CASE("risk estimate: the probe's divergence of Taubin smoothing matches its exact trace", "[denoise][risk]") {
-  const Mesh clean = buildMesh(shapes::icosphere(3)).mesh;
-  const Mesh noisy = withNoise(clean, 0.3, 5);
-  const std::vector<Vec3> input = noisy.positions();
-  const double sigma = 0.3 * averageEdgeLength(noisy);
-  Mesh work = noisy;
+  NoisySphere s(5);
+  auto& [noisy, input, sigma, work] = s;
   for (bool bounded : {false, true}) {
     RiskOptions o;
     o.probeSpacing = 1;  // every vertex: the estimate is then tr J up to the probe's cross terms
@@ -60,11 +68,8 @@ TEST_CASE("risk estimate: the probe's divergence of Taubin smoothing matches its
 
 TEST_CASE("risk estimate: a jump at one probed vertex moves the bounded divergence by at most that vertex's share",
           "[denoise][risk]") {
-  const Mesh clean = buildMesh(shapes::icosphere(3)).mesh;
-  const Mesh noisy = withNoise(clean, 0.3, 7);
-  const std::vector<Vec3> input = noisy.positions();
-  const double sigma = 0.3 * averageEdgeLength(noisy);
-  Mesh work = noisy;
+  NoisySphere s(7);
+  auto& [noisy, input, sigma, work] = s;
   RiskOptions bounded, raw;
   raw.boundedDivergence = false;
   const RiskEstimate withBound(work, input, sigma, 1, bounded);
