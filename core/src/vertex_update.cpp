@@ -17,7 +17,7 @@ std::string vecText(const Vec3& v) {
   return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
 }
 
-Vec3 crossOf(const std::vector<Vec3>& x, const Face& t) {
+[[gnu::always_inline]] inline Vec3 crossOf(const std::vector<Vec3>& x, const Face& t) {
   return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
 }
 
@@ -64,41 +64,44 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   const std::vector<Eigen::Vector3f>& inputNormal = options.referenceNormals.empty() ? ownReference : options.referenceNormals;
 
   VertexUpdateResult result;
-  std::vector<Vec3> x = mesh.positions(), candidate = x, step(nv);
+  std::vector<Vec3> x = mesh.positions(), candidate(nv), step(nv);
   std::vector<char> bad(nf);
   ParallelOptions par = options.parallel;
   par.chunk = 1024;
   const Progress quiet;  // the iterations report; the parallel loops inside them do not
-  // Each face's cross product at the current positions, in single precision: only the sign of a
-  // dot product with it is read (its length, the weight, is taken in double when it is computed).
-  std::vector<Eigen::Vector3f> currentCross(nf);
   std::vector<double> scale(nv);
   std::vector<char> halvedThisRound(nv);
   std::vector<int> badFaces, touched;
   std::vector<int> badStamp(nf, -1);  // round in which a face was last queued, to queue it once
   int round = 0;
 
+  // A face's weight and target plane offset at positions p, so that a corner x_v is pulled by
+  // (n·c − n·x_v) n; `cross` is its cross product there.
+  auto setPlane = [&](int f, const std::vector<Vec3>& p, const Vec3& cross) {
+    const Face& t = mesh.face(f);
+    plane[f].weight = options.areaWeighted ? 0.5 * cross.norm() : 1.0;
+    plane[f].offset = plane[f].n.dot(p[t[0]] + p[t[1]] + p[t[2]]) / 3.0;  // one division, not three
+  };
+  // Whether face f passes the guard at the candidate positions, against its normal at the current
+  // ones (compared in single precision: only the sign of a dot product with it is read). The
+  // candidate's plane is set on the way: if the candidate stays, the next iteration starts from it.
   auto faceOk = [&](int f) {
-    const Vec3 c = crossOf(candidate, mesh.face(f));
+    const Face& t = mesh.face(f);
+    const Vec3 c = crossOf(candidate, t);
+    const Eigen::Vector3f current = crossOf(x, t).cast<float>();
+    setPlane(f, candidate, c);
     const bool keepsInputSide = inputNormal[f].squaredNorm() == 0.0f || c.dot(inputNormal[f].cast<double>()) > 0.0 ||
                                 (options.flipGuard == FlipGuard::InputOrTarget && c.dot(plane[f].n) > 0.0);
-    const bool keepsCurrentSide = (currentCross[f].array() == 0.0f).all() || c.dot(currentCross[f].cast<double>()) > 0.0;
+    const bool keepsCurrentSide = (current.array() == 0.0f).all() || c.dot(current.cast<double>()) > 0.0;
     return keepsInputSide && keepsCurrentSide;
   };
 
+  // The first iteration's planes; later ones are set by the guard's checks.
+  parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { setPlane(f, x, crossOf(x, mesh.face(f))); });
   for (int it = 0; it < options.iterations; ++it) {
     progress.step(static_cast<double>(it) / options.iterations, "vertex update");
     // Each vertex gathers over its faces in the mesh's counter-clockwise order from its first
     // half-edge: a fixed order, so the sums (and so the results) do not depend on the threads.
-    // Per face once, not once per corner: its cross product, its weight, and its target plane's
-    // offset, so that a corner x_v is pulled by (n·c − n·x_v) n.
-    parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
-      const Face& t = mesh.face(f);
-      const Vec3 cross = crossOf(x, t);
-      currentCross[f] = cross.cast<float>();
-      plane[f].weight = options.areaWeighted ? 0.5 * cross.norm() : 1.0;
-      plane[f].offset = plane[f].n.dot((x[t[0]] + x[t[1]] + x[t[2]]) / 3.0);
-    });
     parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
       Vec3 sum = Vec3::Zero();
       double wsum = 0;
@@ -109,7 +112,7 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
         sum += (p.weight * (p.offset - p.n.dot(xv))) * p.n;
         wsum += p.weight;
       });
-      step[v] = !pinned[v] && wsum > 0 ? Vec3(sum / wsum) : Vec3::Zero();
+      step[v] = !pinned[v] && wsum > 0 ? Vec3(sum * (1.0 / wsum)) : Vec3::Zero();
       scale[v] = 1.0;
       candidate[v] = xv + step[v];
     });
@@ -151,8 +154,7 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
       // A bad face whose vertices are all frozen sits at its current, valid position; it cannot
       // stay bad, so the loop ends after at most kMaxHalvings + 1 rounds per vertex.
     }
-    x.swap(candidate);
-    candidate = x;
+    x.swap(candidate);  // every candidate entry is written again by the next gather
     result.iterations = it + 1;
   }
   progress.step(1.0, "vertex update");
