@@ -181,27 +181,29 @@ size_t FaceNeighborhoods::bytes() const {
 
 namespace {
 
-// e^x for the shift's kernel (x <= 0), four at a time: the range reduction of
+// e^x for the shift's kernel, four at a time, for x in [kMinExponent, 0]: the range reduction of
 // mean_shift_detail::kernelExp with a degree-7 polynomial instead of 12 (relative error below 1e-8 on
 // |r| <= ln2/2, far below what a weight needs), 2^n built in the exponent bits of the rounding shift
 // (its low bits hold n). GCC/Clang vector extensions: two SSE2 halves natively, wasm SIMD in the
 // browser; each lane runs the same operations in the same order as one scalar evaluation would, so
-// the weights do not depend on the instruction set. Exponents below −700 give 0.
+// the weights do not depend on the instruction set. No comparison inside (GCC compares vector lanes
+// one by one on SSE2): the caller clamps the exponents.
 using Double4 = double __attribute__((vector_size(32)));
 using Bits4 = std::int64_t __attribute__((vector_size(32)));
 constexpr int kLanes = 4;
+// e^−708 ≈ 3e-308, still a normal number: a weight no sum notices beside its own face's weight of 1.
+constexpr double kMinExponent = -708;
 
 [[gnu::always_inline]] inline Double4 shiftExp(Double4 x) {
   constexpr double kLn2Hi = 6.93147180369123816490e-01, kLn2Lo = 1.90821492927058770002e-10;
   constexpr double kInvLn2 = 1.44269504088896338700e+00, kShift = 6755399441055744.0;
-  const Bits4 keep = x >= -700.0;
   const Double4 shifted = x * kInvLn2 + kShift;
   const Double4 n = shifted - kShift;
   const Double4 r = (x - n * kLn2Hi) - n * kLn2Lo;
   const Double4 p =
       1.0 + r * (1.0 + r * (1.0 / 2 + r * (1.0 / 6 + r * (1.0 / 24 + r * (1.0 / 120 + r * (1.0 / 720 + r * (1.0 / 5040)))))));
   const Bits4 scale = (reinterpret_cast<Bits4>(shifted) + 1023) << 52;
-  return reinterpret_cast<Double4>(reinterpret_cast<Bits4>(p * reinterpret_cast<Double4>(scale)) & keep);
+  return p * reinterpret_cast<Double4>(scale);
 }
 
 // What a neighbour contributes, side by side for the inner loop's memory accesses.
@@ -239,7 +241,7 @@ std::vector<Vec3> shift(const FaceNeighborhoods& hoods, const std::vector<FaceNo
       for (int i = 0; i < m; ++i) {
         const int g = rows[j0 + i];
         const double range = (faces[g].n - nf0).squaredNorm() * k;
-        e[i] = stored ? -range : -range - (hoods.centroids[g] - cf).squaredNorm() * ks;
+        e[i] = std::max(stored ? -range : -range - (hoods.centroids[g] - cf).squaredNorm() * ks, kMinExponent);
       }
       for (int i = m; i % kLanes != 0; ++i) e[i] = 0;
       for (int i = 0; i < m; i += kLanes) {

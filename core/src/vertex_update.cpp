@@ -79,8 +79,9 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   // (n·c − n·x_v) n; `cross` is its cross product there.
   auto setPlane = [&](int f, const std::vector<Vec3>& p, const Vec3& cross) {
     const Face& t = mesh.face(f);
-    plane[f].weight = options.areaWeighted ? 0.5 * cross.norm() : 1.0;
-    plane[f].offset = plane[f].n.dot(p[t[0]] + p[t[1]] + p[t[2]]) / 3.0;  // one division, not three
+    // A face without a target pulls on nothing: weight 0.
+    plane[f].weight = plane[f].n.squaredNorm() == 0 ? 0.0 : options.areaWeighted ? 0.5 * cross.norm() : 1.0;
+    plane[f].offset = plane[f].n.dot(p[t[0]] + p[t[1]] + p[t[2]]) * (1.0 / 3);  // no division: it stalled the loop
   };
   // Whether face f passes the guard at the candidate positions, against its normal at the current
   // ones (compared in single precision: only the sign of a dot product with it is read). The
@@ -108,7 +109,6 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
       const Vec3 xv = x[v];
       mesh.forEachOutgoing(v, [&](int h) {
         const Plane& p = plane[Mesh::faceOf(h)];
-        if (p.n.squaredNorm() == 0) return;
         sum += (p.weight * (p.offset - p.n.dot(xv))) * p.n;
         wsum += p.weight;
       });
