@@ -10,6 +10,11 @@
 
 #include "geoshift/parallel.hpp"
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <sys/wait.h>
+#include <unistd.h>
+#endif
+
 using namespace geoshift;
 
 namespace {
@@ -90,3 +95,21 @@ TEST_CASE("parallelFor called from two threads at once runs both calls' indices 
     }
   }
 }
+
+#if defined(__unix__) || defined(__APPLE__)
+TEST_CASE("after fork() the child's parallelFor runs every index (the parent's helpers are not there)", "[parallel]") {
+  // The helpers exist in the parent before the fork.
+  REQUIRE(countCalls(1000, 2, 1, [](int, int) {}) == std::vector<int>(1000, 1));
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    alarm(60);  // a child waiting for helpers it does not have would hang: end it instead
+    const std::vector<int> calls = countCalls(5000, 2, 1, [](int, int) {});
+    _exit(calls == std::vector<int>(5000, 1) ? 0 : 1);
+  }
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  REQUIRE(WIFEXITED(status));
+  REQUIRE(WEXITSTATUS(status) == 0);
+}
+#endif
