@@ -12,20 +12,41 @@ namespace {
 
 // Who each vertex averages, fixed for the whole call (connectivity does not change). For an interior
 // vertex one entry per outgoing half-edge, with the two vertices opposite that edge (for the
-// cotangent weights); for a boundary vertex its two boundary neighbours only, without opposites.
+// cotangent weights only); for a boundary vertex its two boundary neighbours only, without opposites.
+// Sized exactly: a denoise smooths while its largest arrays are held (docs/denoising.md#speed-and-memory).
 struct Stencil {
   std::vector<int> start;  // vertex v's entries are [start[v], start[v+1])
   std::vector<int> neighbor;
-  std::vector<int> oppositeA, oppositeB;  // -1 on boundary stencils
+  std::vector<int> oppositeA, oppositeB;  // cotangent weights only; -1 on boundary stencils
   std::vector<char> boundary;
 };
 
-Stencil buildStencil(const Mesh& mesh) {
+Stencil buildStencil(const Mesh& mesh, bool opposites) {
   Stencil s;
   const int n = mesh.vertexCount();
   s.start.assign(n + 1, 0);
   s.boundary.assign(n, 0);
-  s.neighbor.reserve(mesh.halfedgeCount());
+  // Entries: the outgoing half-edges of interior vertices, two for each boundary vertex.
+  size_t entries = 0;
+  for (int v = 0; v < n; ++v) {
+    if (mesh.isIsolated(v)) continue;
+    if (mesh.isBoundaryVertex(v)) {
+      entries += 2;
+    } else {
+      mesh.forEachOutgoing(v, [&](int) { ++entries; });
+    }
+  }
+  s.neighbor.reserve(entries);
+  if (opposites) {
+    s.oppositeA.reserve(entries);
+    s.oppositeB.reserve(entries);
+  }
+  const auto add = [&](int nb, int a, int b) {
+    s.neighbor.push_back(nb);
+    if (!opposites) return;
+    s.oppositeA.push_back(a);
+    s.oppositeB.push_back(b);
+  };
   for (int v = 0; v < n; ++v) {
     s.start[v] = static_cast<int>(s.neighbor.size());
     if (mesh.isIsolated(v)) continue;
@@ -35,17 +56,11 @@ Stencil buildStencil(const Mesh& mesh) {
       s.boundary[v] = 1;
       int last = -1;
       mesh.forEachOutgoing(v, [&](int h) { last = h; });
-      for (int nb : {mesh.head(mesh.halfedge(v)), mesh.tail(Mesh::prev(last))}) {
-        s.neighbor.push_back(nb);
-        s.oppositeA.push_back(-1);
-        s.oppositeB.push_back(-1);
-      }
+      for (int nb : {mesh.head(mesh.halfedge(v)), mesh.tail(Mesh::prev(last))}) add(nb, -1, -1);
       continue;
     }
     mesh.forEachOutgoing(v, [&](int h) {
-      s.neighbor.push_back(mesh.head(h));
-      s.oppositeA.push_back(mesh.tail(Mesh::prev(h)));
-      s.oppositeB.push_back(mesh.tail(Mesh::prev(mesh.twin(h))));
+      add(mesh.head(h), mesh.tail(Mesh::prev(h)), mesh.tail(Mesh::prev(mesh.twin(h))));
     });
   }
   s.start[n] = static_cast<int>(s.neighbor.size());
@@ -109,7 +124,7 @@ void taubinSmooth(Mesh& mesh, const TaubinOptions& options, const Progress& prog
     throw InputError("Taubin: mu must be < -lambda (got mu " + formatNumber(options.mu) + ", lambda " +
                      formatNumber(options.lambda) + ")");
   }
-  const Stencil stencil = buildStencil(mesh);
+  const Stencil stencil = buildStencil(mesh, options.weights == LaplacianWeights::Cotangent);
   // Work on a copy: a cancelled call must leave the mesh as it was.
   std::vector<Vec3> x = mesh.positions();
   std::vector<Vec3> delta(x.size(), Vec3::Zero());
