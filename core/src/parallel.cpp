@@ -125,7 +125,10 @@ void parallelForChunks(int count, const ParallelOptions& options, const Progress
   const int chunk = std::max(1, options.chunk);
   const int chunks = (count + chunk - 1) / chunk;
 
-  std::atomic<int> next{0};
+  // Chunk 0 is the caller's, whatever the helpers do meanwhile: the caller always runs a chunk and
+  // reports after it, so a cancel raised from that report stops the call at the next chunk even
+  // when the helpers (kept between calls, awake at once) could take every other chunk first.
+  std::atomic<int> next{1};
   std::atomic<int> done{0};
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
@@ -141,6 +144,7 @@ void parallelForChunks(int count, const ParallelOptions& options, const Progress
     using Clock = std::chrono::steady_clock;
     auto lastReport = Clock::now();
     const auto interval = std::chrono::duration<double>(options.reportSeconds);
+    bool first = caller;
     try {
       for (;;) {
         if (stop.load(std::memory_order_relaxed)) return;
@@ -149,7 +153,8 @@ void parallelForChunks(int count, const ParallelOptions& options, const Progress
           stop.store(true);
           return;
         }
-        const int c = next.fetch_add(1, std::memory_order_relaxed);
+        const int c = first ? 0 : next.fetch_add(1, std::memory_order_relaxed);
+        first = false;
         if (c >= chunks) return;
         const int begin = c * chunk, end = std::min(count, begin + chunk);
         runner.run(runner.context, begin, end, worker);
