@@ -331,10 +331,13 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   CandidateRace race(o, risk, rank, result);
 
   for (int steps : o.presmoothing) {
-    for (double hr : o.rangeBandwidths) {
-      CandidateRace::Run run{steps, hr, {input, &inputUpdate}, {probed, &probedUpdate}};
-      passes.presmooth(run.x, steps);
-      passes.presmooth(run.xp, steps);
+    // Smoothed once per step count; the runs of the other bandwidths start from copies.
+    Track x{input, &inputUpdate}, xp{probed, &probedUpdate};
+    passes.presmooth(x, steps);
+    passes.presmooth(xp, steps);
+    for (size_t i = 0; i < o.rangeBandwidths.size(); ++i) {
+      const bool last = i + 1 == o.rangeBandwidths.size();
+      CandidateRace::Run run{steps, o.rangeBandwidths[i], last ? std::move(x) : x, last ? std::move(xp) : xp};
       race.add(std::move(run));
     }
   }
