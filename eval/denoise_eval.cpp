@@ -68,6 +68,7 @@ Score taubinTuned(const Case& c) {
   Mesh m = c.noisy;
   TaubinOptions one;
   one.iterations = 1;
+  one.parallel.threads = 1;  // each method on one thread (--jobs runs cases side by side)
   int best = 0;
   double bestRms = pointToSurface(m.positions(), c.clean).rms;
   for (int step = 1; step <= 200; ++step) {
@@ -81,6 +82,7 @@ Score taubinTuned(const Case& c) {
   m = c.noisy;
   TaubinOptions o;
   o.iterations = best;
+  o.parallel.threads = 1;
   const auto t0 = std::chrono::steady_clock::now();
   taubinSmooth(m, o);
   return scoreOf(c, m.positions(), "best of 0..200: " + std::to_string(best) + " steps", msSince(t0));
@@ -226,6 +228,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
     Mesh smoothed = c.noisy;
     TaubinOptions six;
     six.iterations = o.riskNormalSmoothing;
+    six.parallel.threads = 1;
     taubinSmooth(smoothed, six);
     const std::vector<Vec3> N = vertexNormals(smoothed);
     o.onCandidate = [&, N](int steps, int passes, const std::vector<Vec3>& x, double positionRisk) {

@@ -42,9 +42,10 @@ OpOutput runDenoise(const OpContext& context) {
     out.stats.set("limitedSteps", r.vertexUpdate.limitedSteps);
     out.stats.set("threads", 1);
   } else {
+    settings.taubin.parallel.threads = context.threads(0);
     taubinSmooth(mesh, settings.taubin, context.progress);
     out.stats.set("iterations", settings.taubin.iterations);
-    out.stats.set("threads", 1);
+    out.stats.set("threads", settings.taubin.parallel.threads);
   }
   out.positions = mesh.positions();
   return out;

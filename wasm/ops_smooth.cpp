@@ -5,7 +5,8 @@
 namespace geoshift::wasm {
 
 OpOutput runSmooth(const OpContext& context) {
-  const TaubinOptions options = smoothOptions(context.params);
+  TaubinOptions options = smoothOptions(context.params);
+  options.parallel.threads = context.threads(0);
   Mesh mesh = context.session.build.mesh;
   taubinSmooth(mesh, options, context.progress);
   OpOutput out;

@@ -89,7 +89,9 @@ class Passes {
     FaceNeighborhoodOptions hoodOptions = o.neighborhood;
     hoodOptions.parallel.threads = o.threads;
     const std::vector<Vec3> start = work.positions();
-    taubinSmooth(work, o.supportSmoothing);
+    TaubinOptions support = o.supportSmoothing;
+    support.parallel = parallel_;
+    taubinSmooth(work, support);
     hoods_ = faceNeighborhoods(work, hoodOptions, progress.slice(0, 0.1));
     work.positions() = start;
   }
@@ -112,6 +114,7 @@ class Passes {
     if (steps == 0) return;
     TaubinOptions taubin = o_.supportSmoothing;
     taubin.iterations = steps;
+    taubin.parallel = parallel_;
     work_.positions() = t.positions;
     taubinSmooth(work_, taubin);
     t.positions = work_.positions();
@@ -320,6 +323,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   RiskOptions riskOptions;
   riskOptions.normalSmoothing = o.riskNormalSmoothing;
   riskOptions.taubin = o.supportSmoothing;
+  riskOptions.taubin.parallel.threads = o.threads;
   riskOptions.seed = o.seed;
   riskOptions.probeSpacing = o.probeSpacing;
   riskOptions.boundedDivergence = o.boundedDivergence;

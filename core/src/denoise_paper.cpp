@@ -38,7 +38,9 @@ DenoiseResult denoisePaper(Mesh& mesh, const DenoiseOptions& all, const Progress
   DenoiseResult result;
   try {
     Mesh support = mesh;
-    taubinSmooth(support, options.support, progress.slice(0, 0.02));
+    TaubinOptions supportSmoothing = options.support;
+    supportSmoothing.parallel = options.meanShift.parallel;
+    taubinSmooth(support, supportSmoothing, progress.slice(0, 0.02));
     const SurfaceGeometry supportGeometry(support);
     MeanShiftOptions ms = options.meanShift;
     ms.channels = {{"NORMAL", ms.rangeBandwidth, ms.rangeKernel}};

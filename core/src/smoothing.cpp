@@ -6,6 +6,7 @@
 
 #include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
+#include "geoshift/parallel.hpp"
 
 namespace geoshift {
 namespace {
@@ -73,44 +74,35 @@ double cotAt(const Vec3& corner, const Vec3& a, const Vec3& b) {
   return c > 0 ? u.dot(w) / c : 0.0;
 }
 
-// Δx_i = Σ_j w_ij (x_j − x_i) with Σ_j w_ij = 1 (Taubin 1995, eq. 4).
-void laplacian(const std::vector<Vec3>& x, const Stencil& s, LaplacianWeights weights,
-               std::vector<Vec3>& delta) {
-  const int n = static_cast<int>(x.size());
-  for (int v = 0; v < n; ++v) {
-    const int begin = s.start[v], end = s.start[v + 1];
-    Vec3 sum = Vec3::Zero();
-    double total = 0;
-    for (int e = begin; e < end; ++e) {
-      const Vec3 d = x[s.neighbor[e]] - x[v];
-      double w = 1.0;
-      if (weights != LaplacianWeights::Uniform) {
-        const double len = d.norm();
-        // A boundary stencil is a 1D polyline, whose cotangent Laplacian is 1/|e| as well.
-        if (weights == LaplacianWeights::Fujiwara || s.boundary[v]) {
-          w = len > 0 ? 1.0 / len : 0.0;
-        } else {
-          // (cot α + cot β) / 2, clamped at 0: negative weights across obtuse triangles make the
-          // normalised step leave the convex hull of the ring and can flip triangles.
-          const Vec3& xj = x[s.neighbor[e]];
-          w = std::max(0.0, 0.5 * (cotAt(x[s.oppositeA[e]], x[v], xj) +
-                                   cotAt(x[s.oppositeB[e]], x[v], xj)));
-        }
+// Δx_v = Σ_j w_vj (x_j − x_v) with Σ_j w_vj = 1 (Taubin 1995, eq. 4).
+Vec3 laplacianAt(const std::vector<Vec3>& x, const Stencil& s, LaplacianWeights weights, int v) {
+  const int begin = s.start[v], end = s.start[v + 1];
+  Vec3 sum = Vec3::Zero();
+  double total = 0;
+  for (int e = begin; e < end; ++e) {
+    const Vec3 d = x[s.neighbor[e]] - x[v];
+    double w = 1.0;
+    if (weights != LaplacianWeights::Uniform) {
+      const double len = d.norm();
+      // A boundary stencil is a 1D polyline, whose cotangent Laplacian is 1/|e| as well.
+      if (weights == LaplacianWeights::Fujiwara || s.boundary[v]) {
+        w = len > 0 ? 1.0 / len : 0.0;
+      } else {
+        // (cot α + cot β) / 2, clamped at 0: negative weights across obtuse triangles make the
+        // normalised step leave the convex hull of the ring and can flip triangles.
+        const Vec3& xj = x[s.neighbor[e]];
+        w = std::max(0.0, 0.5 * (cotAt(x[s.oppositeA[e]], x[v], xj) + cotAt(x[s.oppositeB[e]], x[v], xj)));
       }
-      sum += w * d;
-      total += w;
     }
-    if (total > 0 && std::isfinite(total)) {
-      delta[v] = sum / total;
-    } else if (end > begin) {
-      // All weights vanished (a collapsed ring): fall back to the umbrella operator.
-      Vec3 mean = Vec3::Zero();
-      for (int e = begin; e < end; ++e) mean += x[s.neighbor[e]] - x[v];
-      delta[v] = mean / static_cast<double>(end - begin);
-    } else {
-      delta[v] = Vec3::Zero();  // isolated vertex: does not move
-    }
+    sum += w * d;
+    total += w;
   }
+  if (total > 0 && std::isfinite(total)) return sum / total;
+  if (end == begin) return Vec3::Zero();  // isolated vertex: does not move
+  // All weights vanished (a collapsed ring): fall back to the umbrella operator.
+  Vec3 mean = Vec3::Zero();
+  for (int e = begin; e < end; ++e) mean += x[s.neighbor[e]] - x[v];
+  return mean / static_cast<double>(end - begin);
 }
 
 }  // namespace
@@ -125,14 +117,19 @@ void taubinSmooth(Mesh& mesh, const TaubinOptions& options, const Progress& prog
                      formatNumber(options.lambda) + ")");
   }
   const Stencil stencil = buildStencil(mesh, options.weights == LaplacianWeights::Cotangent);
-  // Work on a copy: a cancelled call must leave the mesh as it was.
-  std::vector<Vec3> x = mesh.positions();
-  std::vector<Vec3> delta(x.size(), Vec3::Zero());
+  // Work on a copy: a cancelled call must leave the mesh as it was. Each half-step writes the
+  // next positions into the other buffer, vertex by vertex (in parallel: each vertex reads only the
+  // previous positions, so the result does not depend on the threads).
+  std::vector<Vec3> x = mesh.positions(), next(x.size());
+  ParallelOptions par = options.parallel;
+  par.chunk = 1024;
+  const int n = static_cast<int>(x.size());
   for (int it = 0; it < options.iterations; ++it) {
     progress.step(static_cast<double>(it) / options.iterations, "taubin");
     for (double factor : {options.lambda, options.mu}) {
-      laplacian(x, stencil, options.weights, delta);
-      for (size_t v = 0; v < x.size(); ++v) x[v] += factor * delta[v];
+      parallelFor(n, par, Progress{}, "", 0, 1,
+                  [&](int v, int) { next[v] = x[v] + factor * laplacianAt(x, stencil, options.weights, v); });
+      x.swap(next);
     }
   }
   progress.step(1.0, "taubin");

@@ -153,3 +153,27 @@ TEST_CASE("Taubin reports progress and honours cancel", "[taubin][progress]") {
   CHECK_THROWS_AS(taubinSmooth(c, {10, 0.5, -0.53}, cancelling), Cancelled);
   CHECK(c.positions() == original.positions());  // nothing written
 }
+
+TEST_CASE("Taubin gives the same positions on any number of threads", "[taubin][threads]") {
+  // Each half-step writes every vertex from the previous positions alone, so the split of the
+  // vertices among threads cannot change a bit; a shared buffer written in place would.
+  const auto weights = GENERATE(LaplacianWeights::Uniform, LaplacianWeights::Fujiwara,
+                                LaplacianWeights::Cotangent);
+  // A boundary (1D stencils) and 8k vertices: 9 chunks of the loop's 1024, shared among the threads.
+  Mesh noisy = build(shapes::grid(90, 0.3));
+  NoiseOptions noise;
+  noise.amount = 0.3;
+  addNoise(noisy, noise);
+  TaubinOptions options{12, 0.5, -0.53, weights};
+  options.parallel.threads = 1;
+  Mesh serial = noisy;
+  taubinSmooth(serial, options);
+  REQUIRE(serial.positions() != noisy.positions());
+  for (int threads : {2, 3, 4}) {
+    options.parallel.threads = threads;
+    Mesh m = noisy;
+    taubinSmooth(m, options);
+    INFO("weights " << static_cast<int>(weights) << ", " << threads << " threads");
+    CHECK(m.positions() == serial.positions());
+  }
+}

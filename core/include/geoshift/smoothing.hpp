@@ -1,6 +1,7 @@
 #pragma once
 // Taubin λ|μ smoothing (Taubin 1995; docs/algorithms.md#taubin-smoothing).
 #include "geoshift/mesh.hpp"
+#include "geoshift/parallel.hpp"
 #include "geoshift/progress.hpp"
 
 namespace geoshift {
@@ -12,6 +13,7 @@ struct TaubinOptions {
   double lambda = 0.5;      // MeshLab's defaults
   double mu = -0.53;
   LaplacianWeights weights = LaplacianWeights::Uniform;
+  ParallelOptions parallel;  // threads of the per-vertex loop; results do not depend on them
 };
 
 // Smooths positions in place. Boundary vertices use the 1D Laplacian of their two boundary
