@@ -1,6 +1,7 @@
 // OBJ through tinyobjloader for faces, normals and diagnostics; the `v` lines are also parsed here
-// in double precision (tinyobjloader's float build would round them) and are the only lines
-// rewritten on save, so groups, materials, texture coordinates and comments stay byte for byte.
+// in double precision (tinyobjloader's float build would round them). On save the text is scanned
+// again and only its v, vn and f lines are rewritten, so groups, materials, texture coordinates and
+// comments stay byte for byte (docs/io.md, OBJ).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -29,39 +30,66 @@ std::vector<double> vertexValues(std::string_view line, const std::string& path,
   return values;
 }
 
-// The vertex lines' ranges into src, their positions and colors (white where a line has none) into
-// the part.
-void scanVertexLines(const std::string& path, const std::string& text, ObjSource& src, std::vector<Vec3>& positions,
-                     std::vector<Vec3>& colors) {
+enum class LineKind { Vertex, Normal, Face, Other };
+
+// Calls visit(kind, begin, end, lineNo) for every line of the text: begin is the offset of its
+// keyword (its first character that is not a blank), end that of its terminator (or the end of the
+// text). The one scanner of the reader and the writer, so that both see the same v, vn and f lines.
+template <class Visit>
+void forEachLine(std::string_view text, Visit&& visit) {
   size_t lineNo = 0;
   for (size_t pos = 0; pos < text.size();) {
     ++lineNo;
     size_t end = text.find_first_of("\r\n", pos);
-    if (end == std::string::npos) end = text.size();
-    size_t s = text.find_first_not_of(" \t", pos);
+    if (end == std::string_view::npos) end = text.size();
+    const size_t s = text.find_first_not_of(" \t", pos);
     const auto keyword = [&](std::string_view word) {
       return s < end && text.compare(s, word.size(), word) == 0 && s + word.size() < end &&
              (text[s + word.size()] == ' ' || text[s + word.size()] == '\t');
     };
-    if (keyword("vn")) src.normalLines.emplace_back(s, end);
-    if (keyword("f")) src.faceLines.emplace_back(s, end);
-    if (keyword("v")) {
-      const size_t vi = src.vertexLines.size() + 1;  // OBJ numbers vertices from 1
-      const std::vector<double> values = vertexValues(std::string_view(text).substr(s + 2, end - s - 2), path, lineNo, vi);
-      if (values.size() < 3)
-        fail(path + ":" + std::to_string(lineNo), "expected 3 coordinates for vertex " + std::to_string(vi));
-      const Vec3 position(values[0], values[1], values[2]);
-      if (!position.allFinite())
-        fail(path + ":" + std::to_string(lineNo), "vertex " + std::to_string(vi) + " has a non-finite coordinate");
-      const bool hasColor = values.size() >= 6;
-      src.vertexLines.push_back({s, end, hasColor});
-      positions.push_back(position);
-      colors.push_back(hasColor ? Vec3(values[3], values[4], values[5]) : Vec3::Ones());
-    }
+    const LineKind kind = keyword("v")    ? LineKind::Vertex
+                          : keyword("vn") ? LineKind::Normal
+                          : keyword("f")  ? LineKind::Face
+                                          : LineKind::Other;
+    visit(kind, s, end, lineNo);
     pos = end;
     if (pos < text.size() && text[pos] == '\r') ++pos;
     if (pos < text.size() && text[pos] == '\n') ++pos;
   }
+}
+
+// The values of a vertex line (begin at its keyword), checked as the reader checks them.
+std::vector<double> vertexLineValues(std::string_view text, size_t begin, size_t end, const std::string& path,
+                                     size_t lineNo, size_t vertex) {
+  std::vector<double> values = vertexValues(text.substr(begin + 1, end - begin - 1), path, lineNo, vertex);
+  if (values.size() < 3)
+    fail(path + ":" + std::to_string(lineNo), "expected 3 coordinates for vertex " + std::to_string(vertex));
+  return values;
+}
+
+// The vertex lines' positions and colors (white where a line has none) into the part, and the
+// number of v and vn lines into src.
+void scanLines(const std::string& path, std::string_view text, ObjSource& src, std::vector<Vec3>& positions,
+               std::vector<Vec3>& colors, bool& anyColor, bool& allColor) {
+  forEachLine(text, [&](LineKind kind, size_t s, size_t end, size_t lineNo) {
+    if (kind == LineKind::Normal) ++src.normalLineCount;
+    if (kind != LineKind::Vertex) return;
+    const size_t vi = ++src.vertexCount;  // OBJ numbers vertices from 1
+    const std::vector<double> values = vertexLineValues(text, s, end, path, lineNo, vi);
+    const Vec3 position(values[0], values[1], values[2]);
+    if (!position.allFinite())
+      fail(path + ":" + std::to_string(lineNo), "vertex " + std::to_string(vi) + " has a non-finite coordinate");
+    const bool hasColor = values.size() >= 6;
+    // Colors only once a line has one (white for the lines before it): most scans have none.
+    if (hasColor && !anyColor) {
+      colors.reserve(positions.capacity());
+      colors.assign(positions.size(), Vec3::Ones());
+    }
+    anyColor = anyColor || hasColor;
+    allColor = allColor && hasColor;
+    positions.push_back(position);
+    if (anyColor) colors.push_back(hasColor ? Vec3(values[3], values[4], values[5]) : Vec3::Ones());
+  });
 }
 
 std::string vertexLine(const Vec3& p, const Eigen::Vector4d* color) {
@@ -105,35 +133,35 @@ Document readObj(const std::string& path, const ReadOptions& options) {
     fail(path, "cannot read OBJ: " + err);
   }
   MeshPart part;
+  // As many as tinyobjloader found (checked against the v lines below): exactly sized, not doubled.
+  part.positions.reserve(reader.GetAttrib().vertices.size() / 3);
   std::vector<Vec3> colors;
-  scanVertexLines(path, src.text, src, part.positions, colors);
-  // The face lines are only rewritten to drop normal references: without vn lines there are none.
-  if (src.normalLines.empty()) std::vector<std::pair<size_t, size_t>>().swap(src.faceLines);
-  if (src.vertexLines.size() > options.maxVertices)
-    fail(path, "the file has " + std::to_string(src.vertexLines.size()) + " vertices, more than the limit of " +
+  bool anyColor = false, allColor = true;
+  scanLines(path, src.text, src, part.positions, colors, anyColor, allColor);
+  if (src.vertexCount > options.maxVertices)
+    fail(path, "the file has " + std::to_string(src.vertexCount) + " vertices, more than the limit of " +
                    std::to_string(options.maxVertices) + " (raise it with --max-vertices)");
   const auto& attrib = reader.GetAttrib();
-  const size_t nv = src.vertexLines.size();
+  const size_t nv = src.vertexCount;
   if (attrib.vertices.size() / 3 != nv)
     fail(path, "found " + std::to_string(nv) + " 'v' lines but tinyobjloader read " +
                    std::to_string(attrib.vertices.size() / 3) + " vertices (line continuations are not supported)");
 
   part.label = std::filesystem::path(path).filename().string();
   part.instances.push_back(Eigen::Matrix4d::Identity());
-  bool anyColor = false, allColor = true;
-  for (const auto& l : src.vertexLines) {
-    anyColor = anyColor || l.hasColor;
-    allColor = allColor && l.hasColor;
-  }
   if (anyColor) {
     if (!allColor) doc.warnings.push_back(path + ": some vertices have no color; white used for them");
+    part.colors.reserve(colors.size());
     for (const Vec3& c : colors) part.colors.emplace_back(c.x(), c.y(), c.z(), 1.0);
   }
 
   // OBJ indexes normals separately; a per-vertex normal exists only if every vertex has exactly one.
   std::vector<int> normalOf(nv, -2);
   bool consistent = !attrib.normals.empty();
-  size_t faceNo = 0;
+  size_t faceNo = 0, triangles = 0;
+  for (const auto& shape : reader.GetShapes())
+    triangles += static_cast<size_t>(std::count(shape.mesh.num_face_vertices.begin(), shape.mesh.num_face_vertices.end(), 3u));
+  part.faces.reserve(triangles);  // exactly sized, not doubled: held through the whole command
   for (const auto& shape : reader.GetShapes()) {
     size_t offset = 0;
     for (const auto fv : shape.mesh.num_face_vertices) {
@@ -175,7 +203,7 @@ Document readObj(const std::string& path, const ReadOptions& options) {
       part.normals.emplace_back(attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]);
     src.normals = part.normals;
     // The vn lines found must be tinyobjloader's normals one for one to be rewritten in place.
-    if (src.normalLines.size() == attrib.normals.size() / 3) src.normalOf = normalOf;
+    if (src.normalLineCount == attrib.normals.size() / 3) src.normalOf = normalOf;
   }
   doc.parts.push_back(std::move(part));
   doc.source = std::move(source);
@@ -183,11 +211,6 @@ Document readObj(const std::string& path, const ReadOptions& options) {
 }
 
 namespace {
-
-struct TextEdit {
-  size_t begin, end;  // the range of the source text it replaces
-  std::string text;
-};
 
 std::string normalLine(const Vec3& n) {
   return "vn " + formatNumber(n.x()) + " " + formatNumber(n.y()) + " " + formatNumber(n.z());
@@ -208,13 +231,20 @@ std::string withoutNormals(std::string_view line) {
   return out;
 }
 
-// The edits that make the file's normals the part's: the vn lines rewritten in place when every
-// vertex sharing one has the same new normal; otherwise (a vn line shared across a crease the result
-// no longer has, or vn lines that cannot be told apart) none: the vn lines go and faces lose their
-// normal references, so that viewers compute normals from the written positions.
-void normalEdits(const ObjSource& src, const MeshPart& part, const std::string& path, std::vector<TextEdit>& edits,
-                 std::vector<std::string>& warnings) {
-  std::vector<const Vec3*> normalOfLine(src.normalLines.size(), nullptr);
+// What becomes of the file's vn lines: rewritten in place when every vertex sharing one has the
+// same new normal (newNormal[j] for vn line j, null where it keeps its text); otherwise (a vn line
+// shared across a crease the result no longer has, or vn lines that cannot be told apart) dropped,
+// and the faces lose their normal references, so that viewers compute normals from the written
+// positions.
+struct NormalPlan {
+  bool drop = false;
+  std::vector<const Vec3*> newNormal;
+};
+
+NormalPlan normalPlan(const ObjSource& src, const MeshPart& part, const std::string& path,
+                      std::vector<std::string>& warnings) {
+  NormalPlan plan;
+  std::vector<const Vec3*> normalOfLine(src.normalLineCount, nullptr);
   bool inPlace = src.normalOf.size() == part.normals.size();
   for (size_t v = 0; inPlace && v < part.normals.size(); ++v) {
     const int j = src.normalOf[v];
@@ -224,18 +254,17 @@ void normalEdits(const ObjSource& src, const MeshPart& part, const std::string& 
     inPlace = *normalOfLine[j] == part.normals[v];
   }
   if (inPlace) {
+    plan.newNormal.assign(src.normalLineCount, nullptr);
     for (size_t v = 0; v < part.normals.size(); ++v) {
       const int j = src.normalOf[v];
-      if (normalOfLine[j] != &part.normals[v] || part.normals[v] == src.normals[v]) continue;
-      edits.push_back({src.normalLines[j].first, src.normalLines[j].second, normalLine(part.normals[v])});
+      if (normalOfLine[j] == &part.normals[v] && part.normals[v] != src.normals[v]) plan.newNormal[j] = &part.normals[v];
     }
-    return;
+    return plan;
   }
   warnings.push_back(path + ": the result's normals differ where vertices share a vn line; the vn lines are left out "
                             "(viewers compute normals from the positions)");
-  for (const auto& [begin, end] : src.normalLines) edits.push_back({begin, end, ""});
-  for (const auto& [begin, end] : src.faceLines)
-    edits.push_back({begin, end, withoutNormals(std::string_view(src.text).substr(begin, end - begin))});
+  plan.drop = true;
+  return plan;
 }
 
 }  // namespace
@@ -244,40 +273,56 @@ std::vector<std::string> writeObjInto(const Document& document, const std::strin
   const ObjSource& src = document.source->obj;
   if (document.parts.size() != 1) fail(path, "an OBJ document has exactly one part");
   const MeshPart& part = document.parts[0];
-  if (part.positions.size() != src.vertexLines.size())
+  if (part.positions.size() != src.vertexCount)
     fail(path, std::to_string(part.positions.size()) + " positions, the file has " +
-                   std::to_string(src.vertexLines.size()) + "; the vertex layout cannot change when writing back");
+                   std::to_string(src.vertexCount) + "; the vertex layout cannot change when writing back");
   std::vector<std::string> warnings;
   for (const auto& e : part.extras)
     warnings.push_back(path + ": extra attribute '" + e.name + "' is not stored in OBJ");
+  NormalPlan normals;
+  if (!part.normals.empty() && part.normals != src.normals) normals = normalPlan(src, part, path, warnings);
 
-  std::vector<TextEdit> edits;
-  for (size_t i = 0; i < src.vertexLines.size(); ++i) {
-    const auto& l = src.vertexLines[i];
-    const Eigen::Vector4d* color = part.colors.empty() ? nullptr : &part.colors[i];
-    // Unchanged vertices keep their text, so a round trip without changes is byte-identical.
-    const std::size_t from = l.begin + 1;  // past the keyword
-    const std::vector<double> was = vertexValues(std::string_view(src.text).substr(from, l.end - from), path, 0, i + 1);
-    const bool samePosition = part.positions[i] == Vec3(was[0], was[1], was[2]);
-    const bool sameColor = color ? (l.hasColor && color->head<3>() == Vec3(was[3], was[4], was[5])) : !l.hasColor;
-    if (samePosition && sameColor) continue;
-    edits.push_back({l.begin, l.end, vertexLine(part.positions[i], color)});
-  }
-  if (!part.normals.empty() && part.normals != src.normals) normalEdits(src, part, path, edits, warnings);
-  std::sort(edits.begin(), edits.end(), [](const TextEdit& a, const TextEdit& b) { return a.begin < b.begin; });
-
+  const std::string& text = src.text;
   std::string out;
-  out.reserve(src.text.size() + src.text.size() / 8);
+  out.reserve(text.size() + text.size() / 8);
   size_t copied = 0;
-  for (const TextEdit& e : edits) {
-    out.append(src.text, copied, e.begin - copied);
-    out += e.text;
-    copied = e.end;
-    // A removed line takes its line break with it.
-    if (e.text.empty() && copied < src.text.size() && src.text[copied] == '\r') ++copied;
-    if (e.text.empty() && copied < src.text.size() && src.text[copied] == '\n') ++copied;
-  }
-  out.append(src.text, copied, std::string::npos);
+  // The line [begin, end) becomes `with`; a removed line takes its line break with it.
+  const auto replace = [&](size_t begin, size_t end, std::string_view with) {
+    out.append(text, copied, begin - copied);
+    out += with;
+    copied = end;
+    if (with.empty() && copied < text.size() && text[copied] == '\r') ++copied;
+    if (with.empty() && copied < text.size() && text[copied] == '\n') ++copied;
+  };
+  size_t vertex = 0, normal = 0;
+  forEachLine(text, [&](LineKind kind, size_t s, size_t end, size_t lineNo) {
+    switch (kind) {
+      case LineKind::Vertex: {
+        const size_t i = vertex++;
+        if (i >= part.positions.size()) fail(path, "more v lines than positions");
+        const Eigen::Vector4d* color = part.colors.empty() ? nullptr : &part.colors[i];
+        // Unchanged vertices keep their text, so a round trip without changes is byte-identical.
+        const std::vector<double> was = vertexLineValues(text, s, end, path, lineNo, i + 1);
+        const bool hadColor = was.size() >= 6;
+        const bool samePosition = part.positions[i] == Vec3(was[0], was[1], was[2]);
+        const bool sameColor = color ? (hadColor && color->head<3>() == Vec3(was[3], was[4], was[5])) : !hadColor;
+        if (!samePosition || !sameColor) replace(s, end, vertexLine(part.positions[i], color));
+        return;
+      }
+      case LineKind::Normal: {
+        const size_t j = normal++;
+        if (normals.drop) replace(s, end, "");
+        else if (j < normals.newNormal.size() && normals.newNormal[j]) replace(s, end, normalLine(*normals.newNormal[j]));
+        return;
+      }
+      case LineKind::Face:
+        // Without vn lines a face has no normal references to lose: its text stays as it is.
+        if (normals.drop && src.normalLineCount > 0) replace(s, end, withoutNormals(std::string_view(text).substr(s, end - s)));
+        return;
+      case LineKind::Other: return;
+    }
+  });
+  out.append(text, copied, std::string::npos);
   AtomicFileSet files;
   files.add(path, std::move(out));
   files.commit();
