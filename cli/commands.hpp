@@ -34,7 +34,8 @@ Command addDenoise(CLI::App& app);
 
 // --- shared by the commands ---
 
-// The options every input file is read with (--max-vertices).
+// The options every input file is read with (--max-vertices; an OBJ's text not kept, read again to
+// write back).
 ReadOptions& readOptions();
 // Reads a file with readOptions(), printing its pass-through warnings to stderr.
 Document load(const std::string& path);

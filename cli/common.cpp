@@ -14,7 +14,13 @@
 namespace geoshift::cli {
 
 ReadOptions& readOptions() {
-  static ReadOptions options;
+  // A command reads its input once and writes at most once: an OBJ's text is read again when it is
+  // written back instead of being held through the command (docs/io.md, OBJ).
+  static ReadOptions options = [] {
+    ReadOptions o;
+    o.keepSourceText = false;
+    return o;
+  }();
   return options;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Private to the io layer: what each reader keeps of the parsed file so that writeDocument can put
 // the new geometry back into it, and the helpers the format files share.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,14 @@ struct GltfSource {
 // OBJ is rewritten textually: writeObjInto scans the text again with the reader's scanner and
 // replaces only the `v` lines whose values changed (read again from the line to tell), the `vn`
 // lines and, when the normals are dropped, the `f` lines; everything else stays byte for byte. No
-// line ranges are kept (they held up to 12.6 MB on a 144k-vertex scan).
+// line ranges are kept (they held up to 12.6 MB on a 144k-vertex scan). The text itself is kept
+// unless ReadOptions::keepSourceText is false: then only the file's size and hash are, and the
+// writer reads the file again and checks them (docs/io.md, OBJ).
 struct ObjSource {
-  std::string text;                // the file's bytes
+  std::string path;                // the file read, to read it again
+  bool textKept = true;
+  std::string text;                // the file's bytes, when kept
+  std::uint64_t size = 0, hash = 0;  // of the bytes as read (FNV-1a), checked when the text was not kept
   size_t vertexCount = 0;          // `v` lines
   size_t normalLineCount = 0;      // `vn` lines
   // The vn line of each vertex (when every vertex has exactly one and the vn lines are

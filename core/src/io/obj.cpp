@@ -1,9 +1,10 @@
 // OBJ through tinyobjloader for faces, normals and diagnostics; the `v` lines are also parsed here
-// in double precision (tinyobjloader's float build would round them). On save the text is scanned
-// again and only its v, vn and f lines are rewritten, so groups, materials, texture coordinates and
-// comments stay byte for byte (docs/io.md, OBJ).
+// in double precision (tinyobjloader's float build would round them). On save the text (kept, or
+// read again and checked) is scanned again and only its v, vn and f lines are rewritten, so groups,
+// materials, texture coordinates and comments stay byte for byte (docs/io.md, OBJ).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -28,6 +29,16 @@ std::vector<double> vertexValues(std::string_view line, const std::string& path,
     values.push_back(v);
   }
   return values;
+}
+
+// FNV-1a, 64 bits: tells whether a file read again for writing back is the one that was read.
+std::uint64_t fnv1a(std::string_view bytes) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (const char c : bytes) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 0x100000001b3ull;
+  }
+  return h;
 }
 
 enum class LineKind { Vertex, Normal, Face, Other };
@@ -108,10 +119,13 @@ Document readObj(const std::string& path, const ReadOptions& options) {
   auto source = std::make_shared<DocumentSource>();
   source->format = FileFormat::Obj;
   ObjSource& src = source->obj;
+  src.path = path;
   src.text = readWholeFile(path);
   // NUL never occurs in OBJ text; tinyobjloader would read binary data as lines of nothing.
   if (src.text.find('\0') != std::string::npos)
     fail(path, "not a text OBJ file: it holds NUL bytes (binary data)");
+  src.size = src.text.size();
+  if (!options.keepSourceText) src.hash = fnv1a(src.text);
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
@@ -138,6 +152,10 @@ Document readObj(const std::string& path, const ReadOptions& options) {
   std::vector<Vec3> colors;
   bool anyColor = false, allColor = true;
   scanLines(path, src.text, src, part.positions, colors, anyColor, allColor);
+  if (!options.keepSourceText) {
+    src.textKept = false;
+    std::string().swap(src.text);
+  }
   if (src.vertexCount > options.maxVertices)
     fail(path, "the file has " + std::to_string(src.vertexCount) + " vertices, more than the limit of " +
                    std::to_string(options.maxVertices) + " (raise it with --max-vertices)");
@@ -267,6 +285,28 @@ NormalPlan normalPlan(const ObjSource& src, const MeshPart& part, const std::str
   return plan;
 }
 
+// The source's text for writing back into it: the text kept, or the file read again, which must
+// be the one that was read (docs/io.md, OBJ).
+const std::string& sourceText(const ObjSource& src, const std::string& out, std::string& again) {
+  if (src.textKept) return src.text;
+  const std::string hint = "; nothing written to " + out +
+                           " (an OBJ is written back into its source's text, read again now; write another format, "
+                           "e.g. .ply or .glb, or read the file again)";
+  // The size first: a file that grew is not read whole to find that out.
+  std::error_code ec;
+  const bool regular = std::filesystem::is_regular_file(src.path, ec);
+  const std::uintmax_t size = regular ? std::filesystem::file_size(src.path, ec) : 0;
+  if (!regular || ec) fail(src.path, "gone or unreadable since it was read" + hint);
+  if (size != src.size) fail(src.path, "changed since it was read" + hint);
+  try {
+    again = readWholeFile(src.path);
+  } catch (const InputError&) {
+    fail(src.path, "gone or unreadable since it was read" + hint);
+  }
+  if (again.size() != src.size || fnv1a(again) != src.hash) fail(src.path, "changed since it was read" + hint);
+  return again;
+}
+
 }  // namespace
 
 std::vector<std::string> writeObjInto(const Document& document, const std::string& path) {
@@ -282,7 +322,8 @@ std::vector<std::string> writeObjInto(const Document& document, const std::strin
   NormalPlan normals;
   if (!part.normals.empty() && part.normals != src.normals) normals = normalPlan(src, part, path, warnings);
 
-  const std::string& text = src.text;
+  std::string again;
+  const std::string& text = sourceText(src, path, again);
   std::string out;
   out.reserve(text.size() + text.size() / 8);
   size_t copied = 0;
@@ -299,10 +340,10 @@ std::vector<std::string> writeObjInto(const Document& document, const std::strin
     switch (kind) {
       case LineKind::Vertex: {
         const size_t i = vertex++;
-        if (i >= part.positions.size()) fail(path, "more v lines than positions");
+        if (i >= part.positions.size()) fail(src.path, "changed since it was read; nothing written to " + path);
         const Eigen::Vector4d* color = part.colors.empty() ? nullptr : &part.colors[i];
         // Unchanged vertices keep their text, so a round trip without changes is byte-identical.
-        const std::vector<double> was = vertexLineValues(text, s, end, path, lineNo, i + 1);
+        const std::vector<double> was = vertexLineValues(text, s, end, src.path, lineNo, i + 1);
         const bool hadColor = was.size() >= 6;
         const bool samePosition = part.positions[i] == Vec3(was[0], was[1], was[2]);
         const bool sameColor = color ? (hadColor && color->head<3>() == Vec3(was[3], was[4], was[5])) : !hadColor;
