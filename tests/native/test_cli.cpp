@@ -117,6 +117,37 @@ TEST_CASE("cli: errors name the problem, exit non-zero and write nothing", "[cli
   REQUIRE(geoshiftCli("frobnicate").code != 0);
 }
 
+TEST_CASE("cli: an OBJ written back in place keeps its other lines (its text read again to write)", "[cli]") {
+  const fs::path dir = test::tempDir("cli-obj-in-place");
+  const TriangleSoup ball = shapes::icosphere(2);
+  {
+    std::ofstream o(dir / "ball.obj", std::ios::binary);
+    o.precision(17);
+    o << "# a ball\r\nmtllib ball.mtl\r\ng ball\r\n";
+    for (const Vec3& p : ball.positions) o << "v " << p.x() << " " << p.y() << " " << p.z() << "\r\n";
+    o << "usemtl skin\r\n";
+    for (const Face& f : ball.faces) o << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << "\r\n";
+  }
+  fs::copy_file(dir / "ball.obj", dir / "a.obj");
+  const std::string noise = " --seed 4 --amount 0.3";
+  REQUIRE(geoshiftCli("noise " + q(dir / "ball.obj") + " -o " + q(dir / "noisy.obj") + noise).code == 0);
+  REQUIRE(geoshiftCli("noise " + q(dir / "a.obj") + " -o " + q(dir / "a.obj") + noise).code == 0);
+  const std::string noisy = slurp(dir / "a.obj");
+  CHECK(noisy == slurp(dir / "noisy.obj"));
+  CHECK(noisy != slurp(dir / "ball.obj"));
+  CHECK(noisy.rfind("# a ball\r\nmtllib ball.mtl\r\ng ball\r\nv ", 0) == 0);
+
+  REQUIRE(geoshiftCli("denoise " + q(dir / "noisy.obj") + " -o " + q(dir / "denoised.obj")).code == 0);
+  REQUIRE(geoshiftCli("denoise " + q(dir / "a.obj") + " -o " + q(dir / "a.obj")).code == 0);
+  CHECK(slurp(dir / "a.obj") == slurp(dir / "denoised.obj"));
+  CHECK(slurp(dir / "a.obj") != noisy);
+  CHECK_THAT(slurp(dir / "a.obj"), Catch::Contains("\r\nusemtl skin\r\nf "));
+  // Nothing left beside them (temporaries).
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++files;
+  CHECK(files == 4);
+}
+
 TEST_CASE("cli: every command works on the real meshes of ../shared/data", "[cli][data]") {
   const auto fandiskNoisy = test::sharedData("guided_denoising_bldeng/models/Fandisk0.3/Noisy.obj");
   const auto fandiskClean = test::sharedData("guided_denoising_bldeng/models/Fandisk0.3/Original.obj");
