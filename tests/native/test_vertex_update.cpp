@@ -201,3 +201,33 @@ TEST_CASE("face normals from vertex normals: normalised mean of the corners", "[
   radial[9] = Vec3(INFINITY, 0, 0);
   CHECK_THAT(test::errorOf([&] { faceNormalsFromVertexNormals(m, radial); }), Catch::Contains("vertex 9"));
 }
+
+TEST_CASE("vertex update gives the same result on any number of threads", "[vertex_update][threads]") {
+  // Tangent targets keep the flip guard busy, so the halving rounds run too.
+  const Mesh m = noisy(shapes::icosphere(4), 0.5);
+  std::vector<Vec3> target = faceNormals(m);
+  for (Vec3& n : target) n = (n + 0.8 * n.cross(Vec3(0.3, 0.5, 0.8))).eval();
+  VertexUpdateOptions o;
+  o.iterations = 12;
+  o.parallel.threads = 1;
+  const VertexUpdateResult serial = updateVertices(m, target, o);
+  REQUIRE(serial.limitedSteps > 0);
+  double farthest = 0;  // brute force
+  for (int v = 0; v < m.vertexCount(); ++v) farthest = std::max(farthest, (serial.positions[v] - m.position(v)).norm());
+  CHECK(serial.maxDisplacement == farthest);
+  CHECK(farthest > 0);
+  for (int threads : {2, 3, 4}) {
+    o.parallel.threads = threads;
+    const VertexUpdateResult r = updateVertices(m, target, o);
+    INFO(threads << " threads");
+    CHECK(r.positions == serial.positions);
+    CHECK(r.limitedSteps == serial.limitedSteps);
+    CHECK(r.frozenSteps == serial.frozenSteps);
+    CHECK(r.maxDisplacement == serial.maxDisplacement);
+  }
+  // Several bad targets: the error names the first, whichever thread saw one.
+  target[900] = Vec3(INFINITY, 0, 1);
+  target[17] = Vec3(0, NAN, 1);
+  o.parallel.threads = 4;
+  CHECK_THAT(test::errorOf([&] { updateVertices(m, target, o); }), Catch::Contains("face 17 "));
+}
