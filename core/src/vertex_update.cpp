@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <string>
 
@@ -43,30 +44,38 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   // Per face, what its corners read: its unit target normal with the offset n·c of its target
   // plane (c the centroid) and its weight, side by side for the gather's memory accesses. The
   // normals do not change between iterations. The per-call arrays are left uninitialised and first
-  // written by the parallel loops: on one thread, filling them serially (and the page faults of
-  // their fresh memory) was a sixth of a 2-thread denoise (docs/denoising.md#speed-and-memory).
+  // written by the parallel loops: filled by the calling thread alone (with the page faults of their
+  // fresh memory), they were about a sixth of a 2-thread denoise's work (docs/denoising.md#speed-and-memory).
   struct Plane {
     Vec3 n;
     double offset, weight;
   };
   const std::unique_ptr<Plane[]> plane(new Plane[nf]);
+  // A face's weight and target plane offset at positions p, so that a corner x_v is pulled by
+  // (n·c − n·x_v) n; `cross` is its cross product there.
+  auto setPlane = [&](int f, const std::vector<Vec3>& p, const Vec3& cross) {
+    const Face& t = mesh.face(f);
+    // A face without a target pulls on nothing: weight 0.
+    plane[f].weight = plane[f].n.squaredNorm() == 0 ? 0.0 : options.areaWeighted ? 0.5 * cross.norm() : 1.0;
+    plane[f].offset = plane[f].n.dot(p[t[0]] + p[t[1]] + p[t[2]]) * (1.0 / 3);  // no division: it stalled the loop
+  };
+  const std::unique_ptr<int[]> badStamp(new int[nf]);  // round in which a face was last queued, to queue it once
+  // Per face in one loop: its unit target, the first iteration's plane (later ones are set by the
+  // guard's checks) and its stamp.
   std::atomic<bool> nonFinite{false};
   parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
     const Vec3& n = targetNormals[f];
     if (!n.allFinite()) nonFinite.store(true, std::memory_order_relaxed);
     const double len = n.norm();
     plane[f].n = len > 0 ? Vec3(n / len) : Vec3::Zero();
+    setPlane(f, mesh.positions(), crossOf(mesh.positions(), mesh.face(f)));
+    badStamp[f] = -1;
   });
   if (nonFinite)  // the first such face, whatever the threads
     for (int f = 0; f < nf; ++f)
       if (!targetNormals[f].allFinite())
         throw InputError("vertex update: target normal of face " + std::to_string(f) + " is not finite " + vecText(targetNormals[f]));
   std::vector<Vec3>().swap(targetNormals);
-
-  const std::unique_ptr<char[]> pinned(new char[nv]);
-  parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
-    pinned[v] = mesh.isIsolated(v) || (options.fixedBoundary && mesh.isBoundaryVertex(v));
-  });
 
   // The reference each face must stay on the positive side of (zero for degenerate input faces).
   if (!options.referenceNormals.empty() && options.referenceNormals.size() != static_cast<size_t>(mesh.faceCount()))
@@ -80,22 +89,16 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   VertexUpdateResult result;
   // Vec3's default constructor writes nothing: these are first written by the loops below.
   std::vector<Vec3> x(nv), candidate(nv), step(nv);
-  parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) { x[v] = mesh.position(v); });
+  const std::unique_ptr<char[]> pinned(new char[nv]);
+  parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
+    x[v] = mesh.position(v);
+    pinned[v] = mesh.isIsolated(v) || (options.fixedBoundary && mesh.isBoundaryVertex(v));
+  });
   const std::unique_ptr<char[]> bad(new char[nf]);
   const std::unique_ptr<double[]> scale(new double[nv]);
   std::vector<char> halvedThisRound(nv);
   std::vector<int> badFaces, touched;
-  const std::unique_ptr<int[]> badStamp(new int[nf]);  // round in which a face was last queued, to queue it once
   int round = 0;
-
-  // A face's weight and target plane offset at positions p, so that a corner x_v is pulled by
-  // (n·c − n·x_v) n; `cross` is its cross product there.
-  auto setPlane = [&](int f, const std::vector<Vec3>& p, const Vec3& cross) {
-    const Face& t = mesh.face(f);
-    // A face without a target pulls on nothing: weight 0.
-    plane[f].weight = plane[f].n.squaredNorm() == 0 ? 0.0 : options.areaWeighted ? 0.5 * cross.norm() : 1.0;
-    plane[f].offset = plane[f].n.dot(p[t[0]] + p[t[1]] + p[t[2]]) * (1.0 / 3);  // no division: it stalled the loop
-  };
   // Whether face f passes the guard at the candidate positions, against its normal at the current
   // ones (compared in single precision: only the sign of a dot product with it is read). The
   // candidate's plane is set on the way: if the candidate stays, the next iteration starts from it.
@@ -110,11 +113,6 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     return keepsInputSide && keepsCurrentSide;
   };
 
-  // The first iteration's planes; later ones are set by the guard's checks.
-  parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
-    setPlane(f, x, crossOf(x, mesh.face(f)));
-    badStamp[f] = -1;
-  });
   for (int it = 0; it < options.iterations; ++it) {
     progress.step(static_cast<double>(it) / options.iterations, "vertex update");
     // Each vertex gathers over its faces in the mesh's counter-clockwise order from its first
@@ -135,8 +133,9 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
 
     parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { bad[f] = !faceOk(f); });
     badFaces.clear();
-    for (int f = 0; f < nf; ++f)
-      if (bad[f]) badFaces.push_back(f);
+    // Bad faces are few: memchr skips the runs of good ones many bytes at a time.
+    for (const char* at = bad.get(); (at = static_cast<const char*>(std::memchr(at, 1, bad.get() + nf - at))); ++at)
+      badFaces.push_back(static_cast<int>(at - bad.get()));
     while (!badFaces.empty()) {
       // Shorten the steps of every vertex of a bad face once per round, then re-check only the
       // faces those vertices touch.
