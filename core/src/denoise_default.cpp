@@ -84,19 +84,22 @@ class Passes {
  public:
   Passes(Mesh& work, const DenoiseOptions& o, const Progress& progress) : work_(work), o_(o) {
     parallel_.threads = o.threads;
+    taubin_ = o.supportSmoothing;
+    taubin_.parallel = parallel_;
     // Neighbourhoods on a smoothed support, found once.
     progress.step(0, "support");
     FaceNeighborhoodOptions hoodOptions = o.neighborhood;
     hoodOptions.parallel.threads = o.threads;
     const std::vector<Vec3> start = work.positions();
-    TaubinOptions support = o.supportSmoothing;
-    support.parallel = parallel_;
-    taubinSmooth(work, support);
+    taubinSmooth(work, taubin_);
     hoods_ = faceNeighborhoods(work, hoodOptions, progress.slice(0, 0.1));
     work.positions() = start;
   }
 
   size_t neighborhoodBytes() const { return hoods_.bytes(); }
+  // Taubin smoothing as the support, the candidates' pre-smoothing and the risk's normals use it: the
+  // support's settings, on the denoiser's threads.
+  const TaubinOptions& taubin() const { return taubin_; }
 
   // Vertex update options of a start (input or probed input): its face normals are the flip guard's
   // reference for every candidate and pass that starts there.
@@ -112,9 +115,8 @@ class Passes {
 
   void presmooth(Track& t, int steps) {
     if (steps == 0) return;
-    TaubinOptions taubin = o_.supportSmoothing;
+    TaubinOptions taubin = taubin_;
     taubin.iterations = steps;
-    taubin.parallel = parallel_;
     work_.positions() = t.positions;
     taubinSmooth(work_, taubin);
     t.positions = work_.positions();
@@ -135,6 +137,7 @@ class Passes {
   Mesh& work_;
   const DenoiseOptions& o_;
   ParallelOptions parallel_;
+  TaubinOptions taubin_;
   FaceNeighborhoods hoods_;
 };
 
@@ -322,8 +325,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   const double raceSigma = o.refineNoise && result.noiseEstimated ? std::max(lowSigma, estimate.upperLevel * ael) : lowSigma;
   RiskOptions riskOptions;
   riskOptions.normalSmoothing = o.riskNormalSmoothing;
-  riskOptions.taubin = o.supportSmoothing;
-  riskOptions.taubin.parallel.threads = o.threads;
+  riskOptions.taubin = passes.taubin();
   riskOptions.seed = o.seed;
   riskOptions.probeSpacing = o.probeSpacing;
   riskOptions.boundedDivergence = o.boundedDivergence;

@@ -216,6 +216,16 @@ struct FaceNormal {
 // faults were a share of a 2-thread denoise: docs/denoising.md#speed-and-memory).
 using FaceNormals = std::unique_ptr<FaceNormal[]>;
 
+// Face f's record is record(f), filled in parallel (large chunks: each record is cheap).
+template <class Record>
+FaceNormals faceRecords(int nf, const ParallelOptions& parallel, Record&& record) {
+  FaceNormals faces(new FaceNormal[nf]);
+  ParallelOptions par = parallel;
+  par.chunk = 1024;
+  parallelFor(nf, par, Progress{}, "", 0, 1, [&](int f, int) { faces[f] = record(f); });
+  return faces;
+}
+
 std::vector<Vec3> shift(const FaceNeighborhoods& hoods, const FaceNormal* faces, double rangeBandwidth,
                         const ParallelOptions& parallel, const Progress& progress) {
   if (!(rangeBandwidth > 0) || !std::isfinite(rangeBandwidth))
@@ -275,10 +285,7 @@ std::vector<Vec3> shiftFaceNormals(const FaceNeighborhoods& hoods, const std::ve
   if (static_cast<int>(normals.size()) != nf || static_cast<int>(areas.size()) != nf)
     throw InputError("face normal shift: " + std::to_string(normals.size()) + " normals and " +
                      std::to_string(areas.size()) + " areas for " + std::to_string(nf) + " faces");
-  const FaceNormals faces(new FaceNormal[nf]);
-  ParallelOptions par = parallel;
-  par.chunk = 1024;
-  parallelFor(nf, par, Progress{}, "", 0, 1, [&](int f, int) { faces[f] = {normals[f], areas[f]}; });
+  const FaceNormals faces = faceRecords(nf, parallel, [&](int f) { return FaceNormal{normals[f], areas[f]}; });
   return shift(hoods, faces.get(), rangeBandwidth, parallel, progress);
 }
 
@@ -288,15 +295,12 @@ std::vector<Vec3> shiftFaceNormals(const FaceNeighborhoods& hoods, const Mesh& m
   if (mesh.faceCount() != nf)
     throw InputError("face normal shift: " + std::to_string(mesh.faceCount()) + " faces for neighbourhoods of " +
                      std::to_string(nf));
-  const FaceNormals faces(new FaceNormal[nf]);
-  ParallelOptions par = parallel;
-  par.chunk = 1024;
-  parallelFor(nf, par, Progress{}, "", 0, 1, [&](int f, int) {
+  const FaceNormals faces = faceRecords(nf, parallel, [&](int f) {
     // As faceNormals and faceAreas give them: the unit normal (zero for a degenerate face), half the
     // cross product's length.
     const Vec3 c = faceCross(mesh, f);
     const double len = c.norm();
-    faces[f] = {len > 0 ? Vec3(c / len) : Vec3::Zero(), 0.5 * len};
+    return FaceNormal{len > 0 ? Vec3(c / len) : Vec3::Zero(), 0.5 * len};
   });
   return shift(hoods, faces.get(), rangeBandwidth, parallel, progress);
 }
