@@ -4,6 +4,7 @@
 // ratio (issue 7: wasm on one thread should reach 0.6x native).
 //
 //   node bench/wasm/denoise.mjs [--vertices N] [--repetitions R] [--preset default|paper]
+//                               [--only native|node|chromium]
 //
 // GEOSHIFT_NATIVE_CLI and GEOSHIFT_WASM_DIR pick other builds (defaults: build/native-release,
 // build/wasm-release). The job: a torus of about N vertices (default 10k) with noise of 0.3 average
@@ -28,6 +29,13 @@ const presetIndex = argv.indexOf('--preset');
 const preset = presetIndex >= 0 ? argv[presetIndex + 1] : 'default';
 if (!['default', 'paper'].includes(preset)) throw new Error(`--preset must be default or paper (got ${preset})`);
 const repetitions = option('--repetitions', 3);
+// --only: one of the three flavours (for comparing two builds of it, run after run).
+const onlyIndex = argv.indexOf('--only');
+const only = onlyIndex >= 0 ? argv[onlyIndex + 1] : undefined;
+if (only !== undefined && !['native', 'node', 'chromium'].includes(only)) {
+  throw new Error(`--only must be native, node or chromium (got ${only})`);
+}
+const runs = (flavour) => only === undefined || only === flavour;
 const CHROMIUM = '/usr/bin/chromium';
 
 // A closed torus (no seam copies), about `vertices` vertices, with seeded noise.
@@ -82,7 +90,7 @@ async function main() {
   const rows = [];
 
   // Native: the CLI's own timing of the filter (file reading and writing excluded).
-  for (const threads of [1, 0]) {
+  for (const threads of runs('native') ? [1, 0] : []) {
     if (!fs.existsSync(nativeCli)) {
       rows.push({ what: `native CLI, ${threads || 'all'} thread(s)`, note: `skipped: ${nativeCli} is missing` });
       continue;
@@ -99,7 +107,7 @@ async function main() {
     rows.push({ what: `native CLI, ${threads ? '1 thread' : `all cores (${os.cpus().length})`}`, ms: median(times), native: threads === 1 });
   }
   // Peak memory of the whole native process (reading and writing included), when GNU time is there.
-  if (fs.existsSync(nativeCli) && fs.existsSync('/usr/bin/time')) {
+  if (runs('native') && fs.existsSync(nativeCli) && fs.existsSync('/usr/bin/time')) {
     const r = spawnSync('/usr/bin/time', ['-f', 'peak %M KB', nativeCli, 'denoise', off, '-o', path.join(dir, 'native.glb'),
       '--preset', preset], { encoding: 'utf8' });
     const kb = /peak (\d+) KB/.exec(r.stderr);
@@ -107,25 +115,10 @@ async function main() {
       `${((Number(kb[1]) * 1024) / vertexCount).toFixed(0)} bytes per vertex`);
   }
 
-  scanMemory(dir);
+  if (runs('native')) scanMemory(dir);
 
-  // Node wasm, single-threaded flavour: time inside run(), the copy of the result included.
-  try {
-    const geoshift = await loadGeoshift();
-    const times = [];
-    for (let k = 0; k < repetitions; ++k) {
-      const { handle } = geoshift.loadMesh(mesh.positions, mesh.indices);
-      const r = geoshift.run(handle, 'denoise', { preset });
-      geoshift.freeMesh(handle);
-      if (!r.ok) throw new Error(r.error);
-      times.push(r.stats.timeMs);
-    }
-    rows.push({ what: 'Node wasm, 1 thread', ms: median(times), wasm1: true });
-  } catch (e) {
-    rows.push({ what: 'Node wasm, 1 thread', note: `skipped: ${e.message.split('\n')[0]}` });
-  }
-
-  rows.push(await chromiumRow(mesh));
+  if (runs('node')) rows.push(await nodeRow(mesh));
+  if (runs('chromium')) rows.push(await chromiumRow(mesh));
 
   const native1 = rows.find((r) => r.native)?.ms;
   const wasm1 = rows.find((r) => r.wasm1)?.ms;
@@ -144,6 +137,24 @@ async function main() {
     console.log(`wasm (1 thread) / native (1 thread) speed: ${ratio.toFixed(2)} (target >= 0.60: ${ratio >= 0.6 ? 'met' : 'NOT met'})`);
   }
   fs.rmSync(dir, { recursive: true, force: true });
+}
+
+// Node wasm, single-threaded flavour: time inside run(), the copy of the result included.
+async function nodeRow(mesh) {
+  try {
+    const geoshift = await loadGeoshift();
+    const times = [];
+    for (let k = 0; k < repetitions; ++k) {
+      const { handle } = geoshift.loadMesh(mesh.positions, mesh.indices);
+      const r = geoshift.run(handle, 'denoise', { preset });
+      geoshift.freeMesh(handle);
+      if (!r.ok) throw new Error(r.error);
+      times.push(r.stats.timeMs);
+    }
+    return { what: 'Node wasm, 1 thread', ms: median(times), wasm1: true };
+  } catch (e) {
+    return { what: 'Node wasm, 1 thread', note: `skipped: ${e.message.split('\n')[0]}` };
+  }
 }
 
 // Peak memory on a scan read from OBJ (issue 27's second case): Julius's clean mesh with every
