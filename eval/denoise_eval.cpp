@@ -161,7 +161,7 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, radius, impulseShrink, impulseKurtosis;
+  std::optional<double> strength, radius, spatialBandwidth, impulseShrink, impulseKurtosis;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing;
   std::optional<bool> refineNoise, halving, boundedDivergence;
   bool trace = false, trueNoise = false;
@@ -174,6 +174,7 @@ struct WhatIf {
     if (impulseShrink) o.impulseShrink = *impulseShrink;
     if (impulseKurtosis) o.impulseKurtosis = *impulseKurtosis;
     if (radius) o.neighborhood.radius = *radius;
+    if (spatialBandwidth) o.neighborhood.spatialBandwidth = *spatialBandwidth;
     if (maxPasses) o.maxPasses = *maxPasses;
     if (vertexIterations) o.vertexIterations = *vertexIterations;
     if (patience) o.patience = *patience;
@@ -431,7 +432,7 @@ int usage(const char* error) {
          "  --split            print the families of each set and exit\n"
          "  --oracles-only     only fill the oracles' cache (no denoiser, no report)\n"
          "  --noise-estimate   only the estimated against the true noise level of each case\n"
-         "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --patience,\n"
+         "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --hs, --patience,\n"
          "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --halving on|off,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
@@ -485,6 +486,7 @@ int main(int argc, char** argv) {
       else if (a == "--hr") whatIf.range = list([](const std::string& s) { return std::stod(s); });
       else if (a == "--vertex-iterations") whatIf.vertexIterations = std::stoi(value());
       else if (a == "--radius") whatIf.radius = std::stod(value());
+      else if (a == "--hs") whatIf.spatialBandwidth = std::stod(value());
       else if (a == "--patience") whatIf.patience = std::stoi(value());
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
