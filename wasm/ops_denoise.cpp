@@ -42,7 +42,7 @@ OpOutput runDenoise(const OpContext& context) {
     out.stats.set("limitedSteps", r.vertexUpdate.limitedSteps);
     out.stats.set("threads", 1);
   } else {
-    settings.taubin.parallel.threads = context.threads(0);
+    settings.taubin.parallel.threads = context.threads(context.params.integer("threads"));
     taubinSmooth(mesh, settings.taubin, context.progress);
     out.stats.set("iterations", settings.taubin.iterations);
     out.stats.set("threads", settings.taubin.parallel.threads);

@@ -88,6 +88,7 @@ DenoiseSettings denoiseSettings(const ParamRequest& r, DenoiseSettings s) {
     if (r.has("iterations")) o.iterations = r.integer("iterations");
     if (r.has("lambda")) o.lambda = r.number("lambda");
     if (r.has("mu")) o.mu = r.number("mu");
+    if (r.has("threads")) o.parallel.threads = r.integer("threads");
   } else {
     s.method = DenoiseMethod::MeanShift;
     DenoiseOptions& o = s.meanShift;

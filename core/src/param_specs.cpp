@@ -234,7 +234,8 @@ OpParamSpecs denoiseSpecs() {
               P("doubleWeights", T::Boolean, "kernel weights in double precision (slower reference)")
                   .byDefault(!ms.tuning.singlePrecisionKernel).appliesWhen(paperPreset),
               P("threads", T::Integer, "worker threads (0 = all); results do not depend on it")
-                  .byDefault(static_cast<double>(d.threads)).range(0, 1024).appliesWhen(meanShift),
+                  .byDefault(static_cast<double>(d.threads)).range(0, 1024)
+                  .appliesWhen({{"method", {"meanshift", "taubin"}}}),
               P("levels", T::Integer, "wavelet levels: denoise the coarse mesh and restore the details times alpha")
                   .byDefault(static_cast<double>(d.levels)).range(0, kInf).appliesWhen(meanShift),
               P("alpha", T::Number, "detail gain per level, finest first, or one for all")

@@ -337,7 +337,8 @@ export interface DenoiseOptions {
   /**
    * Worker threads (0 = all); results do not depend on it.
    *
-   * Default: `0`. A whole number ≥ 0 and ≤ 1024. Applies only where method is 'meanshift'.
+   * Default: `0`. A whole number ≥ 0 and ≤ 1024. Applies only where method is 'meanshift' or
+   * 'taubin'.
    */
   threads?: number;
   /**

@@ -76,8 +76,11 @@ class TaubinOptions:
     iterations: int
     lambda_: float
     mu: float
+    parallel: ParallelOptions
+    threads: int
     weights: Literal["uniform", "fujiwara", "cotangent"]
     def __init__(self, *, iterations: int = 10, lambda_: float = 0.5, mu: float = -0.53,
+                 parallel: Union[ParallelOptions, dict, None] = None, threads: int = 0,
                  weights: Literal["uniform", "fujiwara", "cotangent"] = "uniform") -> None: ...
     def to_dict(self) -> Dict[str, Any]: ...
 

@@ -169,7 +169,11 @@ void bindOptions(py::module_& m) {
   auto taubin = optionsClass<TaubinOptions>(m, "TaubinOptions", "Taubin lambda|mu smoothing.");
   taubin.def_readwrite("iterations", &TaubinOptions::iterations)
       .def_readwrite("lambda_", &TaubinOptions::lambda)
-      .def_readwrite("mu", &TaubinOptions::mu);
+      .def_readwrite("mu", &TaubinOptions::mu)
+      .def_readwrite("parallel", &TaubinOptions::parallel)
+      .def_property(
+          "threads", [](const TaubinOptions& o) { return o.parallel.threads; },
+          [](TaubinOptions& o, int t) { o.parallel.threads = t; }, "parallel.threads");
   enumField(taubin, "weights", &TaubinOptions::weights,
             {{"uniform", LaplacianWeights::Uniform}, {"fujiwara", LaplacianWeights::Fujiwara}, {"cotangent", LaplacianWeights::Cotangent}});
 

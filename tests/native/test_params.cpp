@@ -211,6 +211,13 @@ TEST_CASE("a denoise request becomes the options of its method, with the options
   CHECK(t.method == DenoiseMethod::Taubin);
   CHECK(t.taubin.iterations == 4);
   CHECK(t.taubin.mu == -0.6);
+  CHECK(t.taubin.parallel.threads == 0);
+  const DenoiseSettings t1 = denoiseSettings(ParamValues{{"method", std::string("taubin")}, {"threads", 1.0}});
+  CHECK(t1.taubin.parallel.threads == 1);
+  // The bilateral filter runs on one thread: a thread count is refused there, naming the methods it applies to.
+  CHECK_THAT(refusal("denoise", {{"method", std::string("bilateral")}, {"threads", 2.0}}),
+             Equals("denoise: parameter threads belongs to method \"meanshift\" or \"taubin\"; threads does not apply to "
+                    "method \"bilateral\""));
 }
 
 TEST_CASE("the CLI spells a parameter in kebab-case unless the table says otherwise", "[params]") {

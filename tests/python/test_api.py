@@ -172,6 +172,16 @@ def test_denoise_keywords_are_the_cli_and_wasm_request(terrain):
     assert fixed.stats["passes"] == 1
 
 
+def test_taubin_gives_the_same_positions_on_any_number_of_threads(terrain):
+    one = geoshift.taubin_smooth(terrain, iterations=5, threads=1)
+    assert not np.array_equal(one.positions, terrain.positions)
+    for threads in (2, 3):
+        np.testing.assert_array_equal(geoshift.taubin_smooth(terrain, iterations=5, threads=threads).positions, one.positions)
+    assert geoshift.TaubinOptions(threads=2).parallel.threads == 2
+    request = geoshift.denoise(terrain, method="taubin", iterations=5, threads=1)
+    np.testing.assert_array_equal(request.mesh.positions, one.positions)
+
+
 def test_param_specs_give_the_options_structs_defaults():
     specs = geoshift.param_specs()
     assert {"noise", "smooth", "curvature", "geodesic", "filter", "denoise", "wavelet"} <= set(specs)
