@@ -109,7 +109,9 @@ OpParamSpecs smoothSpecs() {
               P("lambda", T::Number, "shrinking step, > 0").byDefault(d.lambda).range(-10, 10),
               P("mu", T::Number, "inflating step, < -lambda").byDefault(d.mu).range(-10, 10),
               P("weights", T::Enum, "Laplacian weights: uniform, fujiwara (1/length), cotangent")
-                  .choices({"uniform", "fujiwara", "cotangent"}).byDefault(std::string("uniform")))};
+                  .choices({"uniform", "fujiwara", "cotangent"}).byDefault(std::string("uniform")),
+              P("threads", T::Integer, "worker threads (0 = all); results do not depend on it")
+                  .byDefault(static_cast<double>(d.parallel.threads)).range(0, 1024))};
 }
 
 OpParamSpecs curvatureSpecs() {

@@ -26,6 +26,7 @@ TaubinOptions smoothOptions(const ParamRequest& r) {
   o.weights = weights == "fujiwara"    ? LaplacianWeights::Fujiwara
               : weights == "cotangent" ? LaplacianWeights::Cotangent
                                        : LaplacianWeights::Uniform;
+  o.parallel.threads = r.integer("threads");
   return o;
 }
 

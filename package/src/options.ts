@@ -65,6 +65,12 @@ export interface SmoothOptions {
    * Default: `'uniform'`.
    */
   weights?: 'uniform' | 'fujiwara' | 'cotangent';
+  /**
+   * Worker threads (0 = all); results do not depend on it.
+   *
+   * Default: `0`. A whole number ≥ 0 and ≤ 1024.
+   */
+  threads?: number;
 }
 
 /**

@@ -9,6 +9,7 @@
 #include "geoshift/denoise_request.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/params.hpp"
+#include "geoshift/requests.hpp"
 
 using namespace geoshift;
 using Catch::Matchers::Contains;
@@ -218,6 +219,19 @@ TEST_CASE("a denoise request becomes the options of its method, with the options
   CHECK_THAT(refusal("denoise", {{"method", std::string("bilateral")}, {"threads", 2.0}}),
              Equals("denoise: parameter threads belongs to method \"meanshift\" or \"taubin\"; threads does not apply to "
                     "method \"bilateral\""));
+}
+
+TEST_CASE("a smooth request becomes TaubinOptions with their own defaults, threads included", "[params]") {
+  const TaubinOptions d;
+  const TaubinOptions o = smoothOptions(ParamRequest(paramSpecsOf("smooth"), {}));
+  CHECK(o.iterations == d.iterations);
+  CHECK(o.lambda == d.lambda);
+  CHECK(o.mu == d.mu);
+  CHECK(o.parallel.threads == d.parallel.threads);
+  const TaubinOptions one = smoothOptions(ParamRequest(paramSpecsOf("smooth"), {{"threads", 1.0}, {"iterations", 3.0}}));
+  CHECK(one.parallel.threads == 1);
+  CHECK(one.iterations == 3);
+  CHECK_THAT(refusal("smooth", {{"threads", -1.0}}), Equals("smooth: parameter threads is outside [0, 1024] (got -1)"));
 }
 
 TEST_CASE("the CLI spells a parameter in kebab-case unless the table says otherwise", "[params]") {

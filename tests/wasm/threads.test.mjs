@@ -80,3 +80,24 @@ for (const [op, params] of opCases) {
     assert.ok(results[1].stats.threadsAvailable >= 1);
   });
 }
+
+// Taubin smoothing (the smooth op, and the denoise op's method taubin) takes a thread count: one
+// thread and the whole pool give the same bits, and the stats say how many ran.
+for (const [op, params] of [['smooth', { iterations: 6 }], ['denoise', { method: 'taubin', iterations: 6 }]]) {
+  test(`run('${op}') with threads 1 and 0 agree bit for bit on the threaded build`, () => {
+    const mesh = saddle(40);
+    // A kept mesh takes each op's result: each run on a mesh of its own.
+    const [one, all] = [1, 0].map((threads) => {
+      const { handle } = threaded.loadMesh(mesh.positions, mesh.indices);
+      const r = threaded.run(handle, op, { ...params, threads });
+      threaded.freeMesh(handle);
+      return r;
+    });
+    assert.equal(one.ok, true, one.error);
+    assert.equal(all.ok, true, all.error);
+    assert.equal(one.stats.threads, 1);
+    assert.equal(all.stats.threads, all.stats.threadsAvailable);
+    assert.ok(!Buffer.from(one.positions.buffer).equals(Buffer.from(mesh.positions.buffer)), `${op} moved nothing`);
+    assert.ok(Buffer.from(all.positions.buffer).equals(Buffer.from(one.positions.buffer)), `${op}: threads changed the bits`);
+  });
+}
