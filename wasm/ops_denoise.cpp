@@ -14,7 +14,7 @@ OpOutput runDenoise(const OpContext& context) {
   out.stats.set("method", std::string(denoiseMethodName(settings.method)));
   if (settings.method == DenoiseMethod::MeanShift) {
     DenoiseOptions& o = settings.meanShift;
-    o.threads = context.threads(context.params.integer("threads"));
+    o.threads = context.threads(o.threads);
     o.paper.meanShift.parallel.threads = o.threads;
     const DenoiseResult r = denoise(mesh, o, context.progress);
     if (o.preset == DenoisePreset::Paper) {
@@ -42,7 +42,7 @@ OpOutput runDenoise(const OpContext& context) {
     out.stats.set("limitedSteps", r.vertexUpdate.limitedSteps);
     out.stats.set("threads", 1);
   } else {
-    settings.taubin.parallel.threads = context.threads(context.params.integer("threads"));
+    settings.taubin.parallel.threads = context.threads(settings.taubin.parallel.threads);
     taubinSmooth(mesh, settings.taubin, context.progress);
     out.stats.set("iterations", settings.taubin.iterations);
     out.stats.set("threads", settings.taubin.parallel.threads);
