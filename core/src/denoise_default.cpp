@@ -60,17 +60,6 @@ double displacementKurtosis(const std::vector<Vec3>& input, const std::vector<Ve
   return m2 > 0 ? m4 * count / (m2 * m2) : 0.0;
 }
 
-// The non-negative garrote of each displacement: x − y scaled by max(0, 1 − τ²/d²), d its length
-// along N. A vertex without an N keeps its displacement.
-void garrote(const std::vector<Vec3>& input, std::vector<Vec3>& x, const std::vector<Vec3>& normals, double tau) {
-  for (size_t v = 0; v < x.size(); ++v) {
-    if (normals[v].squaredNorm() == 0) continue;
-    const double d = (x[v] - input[v]).dot(normals[v]);
-    const double scale = d * d > tau * tau ? 1 - tau * tau / (d * d) : 0.0;
-    x[v] = input[v] + scale * (x[v] - input[v]);
-  }
-}
-
 // One copy of the mesh being denoised: its positions and the face normals its guard refers to.
 struct Track {
   std::vector<Vec3> positions;
@@ -265,6 +254,38 @@ class CandidateRace {
 
 }  // namespace
 
+void correctOutliers(const Mesh& mesh, const std::vector<Vec3>& input, std::vector<Vec3>& x,
+                     const std::vector<Vec3>& normals, double tau) {
+  const int n = mesh.vertexCount();
+  // Each vertex's garrote weight; -1 for a vertex without an N, which keeps x.
+  std::vector<double> weight(n, -1.0);
+  for (int v = 0; v < n; ++v) {
+    if (normals[v].squaredNorm() == 0) continue;
+    const double d = (x[v] - input[v]).dot(normals[v]);
+    weight[v] = d * d > tau * tau ? 1 - tau * tau / (d * d) : 0.0;
+  }
+  const std::vector<Vec3> smoothed = std::move(x);
+  x = smoothed;
+  for (int v = 0; v < n; ++v) {
+    const double w = weight[v];
+    if (w < 0) continue;
+    if (w == 0) {
+      x[v] = input[v];
+      continue;
+    }
+    // What the smoothing took from the neighbours, each trusted as far as it is not an outlier.
+    Vec3 detail = Vec3::Zero();
+    double trust = 0;
+    for (int j : mesh.neighbors(v)) {
+      if (weight[j] < 0) continue;
+      detail += (1 - weight[j]) * (input[j] - smoothed[j]);
+      trust += 1 - weight[j];
+    }
+    if (trust > 0) detail /= trust;
+    x[v] = input[v] + w * (smoothed[v] + detail - input[v]);
+  }
+}
+
 DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   validate(o);
@@ -388,7 +409,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   result.displacementKurtosis = displacementKurtosis(input, x, risk.normals());
   if (o.impulseShrink > 0 && result.displacementKurtosis > o.impulseKurtosis) {
-    garrote(input, x, risk.normals(), o.impulseShrink * finalSigma);
+    correctOutliers(mesh, input, x, risk.normals(), o.impulseShrink * finalSigma);
     result.impulseGarrote = true;
   }
   mesh.positions() = std::move(x);

@@ -7,4 +7,14 @@ namespace geoshift::denoise_detail {
 DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& options, const Progress& progress);
 DenoiseResult denoisePaper(Mesh& mesh, const DenoiseOptions& options, const Progress& progress);
 
+// Impulsive noise (docs/denoising.md#impulsive-noise): from the input y and its smoothed copy x,
+// every vertex with a normal in `normals` gets the weight w = max(0, 1 − τ²/d²) of its displacement d
+// = (x − y)·N (a non-negative garrote: near 1 for an outlier the smoothing pulled back, 0 for a
+// vertex it moved less than τ) and ends at y + w (x + b − y), where b is the mean of y − x over its
+// neighbours weighted by 1 − w: the detail the smoothing took from the neighbours, read where the
+// input can be trusted and given back to the outlier. Vertices with w = 0 keep the input's
+// position; those without a normal keep x.
+void correctOutliers(const Mesh& mesh, const std::vector<Vec3>& input, std::vector<Vec3>& x,
+                     const std::vector<Vec3>& normals, double tau);
+
 }  // namespace geoshift::denoise_detail

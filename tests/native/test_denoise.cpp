@@ -77,8 +77,8 @@ TEST_CASE("default denoising of a noisy CAD block removes the noise and keeps th
 }
 
 // Impulsive noise (10% of the vertices moved, N(0, 0.5 AEL)) is told from Gaussian noise by the
-// kurtosis of the winner's displacement; the garrote then leaves the vertices the noise did not touch
-// closer to where they were, and the result is nearer the clean sphere than without it.
+// kurtosis of the winner's displacement; the correction then leaves most vertices exactly where the
+// input had them, and the result is nearer the clean sphere than the winner, in position and normals.
 TEST_CASE("impulsive noise is recognised and the untouched vertices mostly stay", "[denoise][impulsive]") {
   const Mesh clean = build(shapes::icosphere(4));
   const Mesh impulsive = withNoise(clean, 0.5, 6, NoiseDistribution::Impulsive);
@@ -94,12 +94,11 @@ TEST_CASE("impulsive noise is recognised and the untouched vertices mostly stay"
   REQUIRE(r.displacementKurtosis == Approx(r0.displacementKurtosis));
   REQUIRE(r.displacementKurtosis > 6);
   REQUIRE(rmsTo(with, clean) < rmsTo(without, clean));
-  // Every vertex moved along its displacement by a factor in [0, 1]: none goes further than without.
-  for (int v = 0; v < clean.vertexCount(); ++v) {
-    const Vec3 full = without.position(v) - impulsive.position(v), part = with.position(v) - impulsive.position(v);
-    REQUIRE(part.norm() <= full.norm() + 1e-12);
-    REQUIRE(part.dot(full) >= -1e-12);
-  }
+  REQUIRE(meanNormalAngleError(with, clean) < meanNormalAngleError(without, clean));
+  int kept = 0;
+  for (int v = 0; v < clean.vertexCount(); ++v) kept += with.position(v) == impulsive.position(v);
+  INFO("kept " << kept << " of " << clean.vertexCount());
+  REQUIRE(kept > 0.8 * clean.vertexCount());  // the noise moved 10%
   // Gaussian noise everywhere: the kurtosis stays near 3 and nothing is shrunk.
   Mesh gaussian = withNoise(clean, 0.3, 6, NoiseDistribution::Gaussian);
   const DenoiseResult rg = denoise(gaussian);

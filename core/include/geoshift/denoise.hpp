@@ -97,9 +97,10 @@ struct DenoiseOptions {
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the
   // winner's displacement along N exceeds impulseKurtosis (Gaussian noise: about 3), each vertex
-  // keeps its displacement d scaled by max(0, 1 − τ²/d²), τ = impulseShrink σ (a non-negative
-  // garrote): the outliers are corrected, the vertices the noise left alone mostly stay where they
-  // are (docs/denoising.md#impulsive-noise). impulseShrink 0: never.
+  // is weighted by w = max(0, 1 − τ²/d²), d its displacement, τ = impulseShrink σ (a non-negative
+  // garrote), and moves w of the way to the winner's position plus the detail the winner took from
+  // its neighbours, each neighbour trusted by 1 − w: the outliers are corrected, the vertices the
+  // noise left alone stay where they are (docs/denoising.md#impulsive-noise). impulseShrink 0: never.
   double impulseKurtosis = 6;
   double impulseShrink = 0.5;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
@@ -127,7 +128,7 @@ struct DenoiseResult {
   int passes = 0;               // chosen
   int passesRun = 0;            // computed, all candidates
   double displacementKurtosis = 0;  // of the winner's displacement along N (impulseKurtosis)
-  bool impulseGarrote = false;  // the displacement was shrunk as for impulsive noise
+  bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
                                 // 0 when below a tenth of the noise level (not resolved)
   size_t neighborhoodBytes = 0;
