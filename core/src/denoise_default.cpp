@@ -264,8 +264,7 @@ void correctOutliers(const Mesh& mesh, const std::vector<Vec3>& input, std::vect
     const double d = (x[v] - input[v]).dot(normals[v]);
     weight[v] = d * d > tau * tau ? 1 - tau * tau / (d * d) : 0.0;
   }
-  const std::vector<Vec3> smoothed = std::move(x);
-  x = smoothed;
+  const std::vector<Vec3> smoothed = x;
   for (int v = 0; v < n; ++v) {
     const double w = weight[v];
     if (w < 0) continue;
