@@ -60,6 +60,19 @@ double displacementKurtosis(const std::vector<Vec3>& input, const std::vector<Ve
   return m2 > 0 ? m4 * count / (m2 * m2) : 0.0;
 }
 
+// The displacement's robust spread, 1.4826 × the median of |d| over the vertices that have an N (the
+// standard deviation, were d Gaussian around 0): under impulsive noise, the scale of what the winner
+// did to the vertices the noise left alone, which the outliers do not move.
+double displacementSpread(const std::vector<Vec3>& input, const std::vector<Vec3>& x, const std::vector<Vec3>& normals) {
+  std::vector<double> d;
+  d.reserve(x.size());
+  for (size_t v = 0; v < x.size(); ++v)
+    if (normals[v].squaredNorm() != 0) d.push_back(std::abs((x[v] - input[v]).dot(normals[v])));
+  if (d.empty()) return 0.0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return 1.4826 * d[d.size() / 2];
+}
+
 // One copy of the mesh being denoised: its positions and the face normals its guard refers to.
 struct Track {
   std::vector<Vec3> positions;
@@ -408,7 +421,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   result.displacementKurtosis = displacementKurtosis(input, x, risk.normals());
   if (o.impulseShrink > 0 && result.displacementKurtosis > o.impulseKurtosis) {
-    correctOutliers(mesh, input, x, risk.normals(), o.impulseShrink * finalSigma);
+    correctOutliers(mesh, input, x, risk.normals(), o.impulseShrink * displacementSpread(input, x, risk.normals()));
     result.impulseGarrote = true;
   }
   mesh.positions() = std::move(x);

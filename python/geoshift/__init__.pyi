@@ -139,7 +139,7 @@ class DenoiseOptions:
                  neighborhood: Union[FaceNeighborhoodOptions, dict, None] = None,
                  support_smoothing: Union[TaubinOptions, dict, None] = None, presmoothing: Sequence[int] = (3, 15),
                  max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
-                 impulse_kurtosis: float = 6.0, impulse_shrink: float = 0.5,
+                 impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
                  levels: int = 0, alpha: Sequence[float] = (0.0,),
                  wavelet: Union[WaveletOptions, dict, None] = None) -> None: ...

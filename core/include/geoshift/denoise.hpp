@@ -97,12 +97,14 @@ struct DenoiseOptions {
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the
   // winner's displacement along N exceeds impulseKurtosis (Gaussian noise: about 3), each vertex
-  // is weighted by w = max(0, 1 − τ²/d²), d its displacement, τ = impulseShrink σ (a non-negative
-  // garrote), and moves w of the way to the winner's position plus the detail the winner took from
-  // its neighbours, each neighbour trusted by 1 − w: the outliers are corrected, the vertices the
-  // noise left alone stay where they are (docs/denoising.md#impulsive-noise). impulseShrink 0: never.
+  // is weighted by w = max(0, 1 − τ²/d²), d its displacement (a non-negative garrote), and moves w
+  // of the way to the winner's position plus the detail the winner took from its neighbours, each
+  // neighbour trusted by 1 − w: the outliers are corrected, the vertices the noise left alone stay
+  // where they are (docs/denoising.md#impulsive-noise). τ = impulseShrink × 1.4826 median |d|, the
+  // displacements' robust spread (what the winner did to the vertices the noise did not touch).
+  // impulseShrink 0: never.
   double impulseKurtosis = 6;
-  double impulseShrink = 0.5;
+  double impulseShrink = 2;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
   // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risk
   // (mean squared error along the normals): for evaluations and diagnostics.
