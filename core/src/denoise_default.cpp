@@ -45,30 +45,33 @@ void validate(const DenoiseOptions& o) {
     bad("impulse shrink must be >= 0 (0: never; got " + std::to_string(o.impulseShrink) + ")");
 }
 
-// docs/denoising.md#impulsive-noise. The kurtosis E[d⁴] / E[d²]² of the displacement x − y along N
-// over the vertices that have an N: about 3 when every vertex moved by Gaussian noise is pulled
-// back, about 1 / (share moved) when only a few were.
-double displacementKurtosis(const std::vector<Vec3>& input, const std::vector<Vec3>& x, const std::vector<Vec3>& normals) {
-  double m2 = 0, m4 = 0, count = 0;
-  for (size_t v = 0; v < x.size(); ++v) {
-    if (normals[v].squaredNorm() == 0) continue;
-    const double d = (x[v] - input[v]).dot(normals[v]);
-    m2 += d * d;
-    m4 += d * d * d * d;
-    ++count;
-  }
-  return m2 > 0 ? m4 * count / (m2 * m2) : 0.0;
-}
-
-// The displacement's robust spread, 1.4826 × the median of |d| over the vertices that have an N (the
-// standard deviation, were d Gaussian around 0): under impulsive noise, the scale of what the winner
-// did to the vertices the noise left alone, which the outliers do not move.
-double displacementSpread(const std::vector<Vec3>& input, const std::vector<Vec3>& x, const std::vector<Vec3>& normals) {
+// docs/denoising.md#impulsive-noise. The displacement d = (x − y)·N of every vertex that has an N.
+std::vector<double> displacementsAlongN(const std::vector<Vec3>& input, const std::vector<Vec3>& x,
+                                        const std::vector<Vec3>& normals) {
   std::vector<double> d;
   d.reserve(x.size());
   for (size_t v = 0; v < x.size(); ++v)
-    if (normals[v].squaredNorm() != 0) d.push_back(std::abs((x[v] - input[v]).dot(normals[v])));
+    if (normals[v].squaredNorm() != 0) d.push_back((x[v] - input[v]).dot(normals[v]));
+  return d;
+}
+
+// Their kurtosis E[d⁴] / E[d²]²: about 3 when every vertex moved by Gaussian noise is pulled back,
+// about 1 / (share moved) when only a few were.
+double kurtosis(const std::vector<double>& d) {
+  double m2 = 0, m4 = 0;
+  for (double e : d) {
+    m2 += e * e;
+    m4 += e * e * e * e;
+  }
+  return m2 > 0 ? m4 * static_cast<double>(d.size()) / (m2 * m2) : 0.0;
+}
+
+// Their robust spread, 1.4826 × the median of |d| (the standard deviation, were d Gaussian around
+// 0): under impulsive noise, the scale of what the winner did to the vertices the noise left alone,
+// which the outliers do not move.
+double robustSpread(std::vector<double> d) {
   if (d.empty()) return 0.0;
+  for (double& e : d) e = std::abs(e);
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
   return 1.4826 * d[d.size() / 2];
 }
@@ -419,9 +422,10 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   } else {
     x = race.takeBest();
   }
-  result.displacementKurtosis = displacementKurtosis(input, x, risk.normals());
+  const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());
+  result.displacementKurtosis = kurtosis(displacements);
   if (o.impulseShrink > 0 && result.displacementKurtosis > o.impulseKurtosis) {
-    correctOutliers(mesh, input, x, risk.normals(), o.impulseShrink * displacementSpread(input, x, risk.normals()));
+    correctOutliers(mesh, input, x, risk.normals(), o.impulseShrink * robustSpread(displacements));
     result.impulseGarrote = true;
   }
   mesh.positions() = std::move(x);
