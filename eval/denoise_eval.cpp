@@ -162,7 +162,7 @@ struct OracleCache {
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
   std::optional<double> strength, radius, spatialBandwidth, impulseShrink, impulseKurtosis;
-  std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing;
+  std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps;
   std::optional<bool> refineNoise, halving, boundedDivergence;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
@@ -183,6 +183,7 @@ struct WhatIf {
     if (!range.empty()) o.rangeBandwidths = range;
     if (!presmoothing.empty()) o.presmoothing = presmoothing;
     if (probeSpacing) o.probeSpacing = *probeSpacing;
+    if (supportSteps) o.supportSmoothing.iterations = *supportSteps;
     if (refineNoise) o.refineNoise = *refineNoise;
     if (halving) o.halvingRace = *halving;
     if (boundedDivergence) o.boundedDivergence = *boundedDivergence;
@@ -434,6 +435,7 @@ int usage(const char* error) {
          "  --noise-estimate   only the estimated against the true noise level of each case\n"
          "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --hs, --patience,\n"
          "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --halving on|off,\n"
+         "  --support-steps (supportSmoothing.iterations),\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors (slow)\n"
@@ -491,6 +493,7 @@ int main(int argc, char** argv) {
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());
+      else if (a == "--support-steps") whatIf.supportSteps = std::stoi(value());
       else if (a == "--trace") whatIf.trace = true;
       else if (a == "--true-noise") whatIf.trueNoise = true;
       else if (a == "--refine-noise") whatIf.refineNoise = value() != "off";
