@@ -360,13 +360,28 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
   int within = 0;
   double worst = 0;
   std::string worstCase;
-  std::vector<std::string> misses;
+  std::vector<std::string> misses, unstable;
   for (const Result* r : rows) {
     const Verdict v = verdict(r->ours.front(), r->taubin, r->bilateral);
+    std::string wonAt;
+    int wins = 0;
     for (size_t k = 0; k < seeds.size(); ++k) {
       const Verdict vk = verdict(r->ours[k], r->taubin, r->bilateral);
       wonPerSeed[k] += vk.win;
       ratiosPerSeed[k].add(vk);
+      if (!vk.win) continue;
+      if (wins++ > 0) wonAt += ", ";
+      wonAt += std::to_string(seeds[k]);
+    }
+    // The cases the seed decides: what the spread is made of.
+    if (wins > 0 && wins < static_cast<int>(seeds.size())) {
+      std::string line = r->c->mesh;
+      line += ", ";
+      line += r->c->noise;
+      line += wins > 1 ? " (won at seeds " : " (won at seed ";
+      line += wonAt;
+      line += ")";
+      unstable.push_back(std::move(line));
     }
     Category& cat = byCategory[r->c->category];
     cat.won += v.win;
@@ -401,6 +416,9 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
     for (size_t k = 0; k < seeds.size(); ++k)
       s << " " << seeds[k] << ": " << fixed(ratiosPerSeed[k].rms(), 3) << " / " << fixed(ratiosPerSeed[k].angle(), 3)
         << (k + 1 < seeds.size() ? "," : "");
+    s << ".\n\nCases won at some probe seeds and not at others: ";
+    if (unstable.empty()) s << "none";
+    for (size_t i = 0; i < unstable.size(); ++i) s << (i ? "; " : "") << unstable[i];
     s << ".\n";
   }
   if (!misses.empty()) {
