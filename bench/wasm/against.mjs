@@ -54,10 +54,8 @@ const builds = {
     wasm: path.join(root, 'build/wasm-release/wasm'),
   },
 };
-for (const [name, b] of [['here', builds.here]]) {
-  if (!fs.existsSync(b.cli) || !fs.existsSync(path.join(b.wasm, 'geoshift_web_mt.wasm'))) {
-    throw new Error(`this checkout's builds are missing (${b.cli}, ${b.wasm}): run scripts/bootstrap.sh first (${name})`);
-  }
+if (!fs.existsSync(builds.here.cli) || !fs.existsSync(path.join(builds.here.wasm, 'geoshift_web_mt.wasm'))) {
+  throw new Error(`this checkout's builds are missing (${builds.here.cli}, ${builds.here.wasm}): run scripts/bootstrap.sh first`);
 }
 
 // The other commit's sources and builds, made once.
