@@ -16,6 +16,8 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 
+import { median } from '../../tests/wasm/support.mjs';
+
 const root = path.resolve(import.meta.dirname, '../..');
 const argv = process.argv.slice(2);
 const option = (name, fallback) => {
@@ -107,11 +109,6 @@ for (let r = 0; r < rounds; ++r) {
   }
 }
 
-const median = (values) => {
-  const sorted = [...values].sort((a, b) => a - b);
-  const mid = sorted.length >> 1;
-  return sorted.length % 2 ? sorted[mid] : (sorted[mid - 1] + sorted[mid]) / 2;
-};
 const rows = [...new Set([...figures[sha], ...figures.here].flatMap((f) => Object.keys(f)))];
 const cell = (name, row) => figures[name].map((f) => f[row]).filter((v) => v !== undefined);
 const show = (values, row) => values.map((v) => (row.includes('bytes') ? String(v) : `${v.toFixed(2)} s`)).join(', ');

@@ -16,7 +16,7 @@ import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 
-import { loadGeoshift, nativeCli, wasmDir, writeOff } from '../../tests/wasm/support.mjs';
+import { loadGeoshift, median, nativeCli, wasmDir, writeOff } from '../../tests/wasm/support.mjs';
 
 const argv = process.argv.slice(2);
 const option = (name, fallback) => {
@@ -69,12 +69,6 @@ function noisyTorus(vertices) {
   }
   return { positions, indices: new Uint32Array(indices) };
 }
-
-const median = (values) => {
-  const sorted = [...values].sort((a, b) => a - b);
-  const mid = sorted.length >> 1;
-  return sorted.length % 2 ? sorted[mid] : (sorted[mid - 1] + sorted[mid]) / 2;
-};
 
 async function main() {
   const mesh = noisyTorus(targetVertices);
