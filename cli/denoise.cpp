@@ -46,7 +46,11 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
       line << r.estimatedError << " AEL";
     else
       line << "too small to resolve";
-    line << ", " << r.passesRun << " passes computed)";
+    line << ", " << r.passesRun << " passes computed";
+    // docs/denoising.md#ties-between-starts
+    if (r.tieProbes > 0)
+      line << ", a tie between starts settled by " << r.tieProbes << " more probe" << (r.tieProbes > 1 ? "s" : "");
+    line << ")";
     // docs/denoising.md#impulsive-noise
     if (r.impulseGarrote) line << "; the noise looks impulsive: outliers corrected, the other vertices mostly kept";
   }

@@ -161,8 +161,9 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, radius, spatialBandwidth, impulseShrink, impulseKurtosis;
-  std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps;
+  std::optional<double> strength, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin;
+  std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
+      tieProbes;
   std::optional<bool> refineNoise, halving, boundedDivergence;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
@@ -183,6 +184,8 @@ struct WhatIf {
     if (!range.empty()) o.rangeBandwidths = range;
     if (!presmoothing.empty()) o.presmoothing = presmoothing;
     if (probeSpacing) o.probeSpacing = *probeSpacing;
+    if (tieProbes) o.tieProbes = *tieProbes;
+    if (tieMargin) o.tieMargin = *tieMargin;
     if (supportSteps) o.supportSmoothing.iterations = *supportSteps;
     if (refineNoise) o.refineNoise = *refineNoise;
     if (halving) o.halvingRace = *halving;
@@ -254,8 +257,9 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
   } else {
     note << "σ " << r.noiseLevel << " AEL; Taubin " << r.presmoothingSteps << " + " << r.passes << " passes"
          << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "")
-         << (o.fixedPasses > 0 ? " (fixed)" : "") << (r.impulseGarrote ? ", impulse garrote" : "") << " ("
-         << r.passesRun << " computed)";
+         << (o.fixedPasses > 0 ? " (fixed)" : "") << (r.impulseGarrote ? ", impulse garrote" : "")
+         << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe") : "") << " (" << r.passesRun
+         << " computed)";
   }
   return scoreOf(c, m.positions(), note.str(), ms);
 }
@@ -453,7 +457,7 @@ int usage(const char* error) {
          "  --noise-estimate   only the estimated against the true noise level of each case\n"
          "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --hs, --patience,\n"
          "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --halving on|off,\n"
-         "  --support-steps (supportSmoothing.iterations),\n"
+         "  --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors (slow)\n"
@@ -511,6 +515,8 @@ int main(int argc, char** argv) {
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());
+      else if (a == "--tie-probes") whatIf.tieProbes = std::stoi(value());
+      else if (a == "--tie-margin") whatIf.tieMargin = std::stod(value());
       else if (a == "--support-steps") whatIf.supportSteps = std::stoi(value());
       else if (a == "--trace") whatIf.trace = true;
       else if (a == "--true-noise") whatIf.trueNoise = true;

@@ -30,6 +30,7 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("passes", r.passes);
       out.stats.set("rangeBandwidth", r.rangeBandwidth);
       out.stats.set("passesRun", r.passesRun);
+      out.stats.set("tieProbes", r.tieProbes);
       out.stats.set("estimatedError", r.estimatedError);
       out.stats.set("impulseGarrote", r.impulseGarrote ? "yes" : "no");
     }

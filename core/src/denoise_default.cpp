@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 #include "denoise_detail.hpp"
@@ -38,6 +39,9 @@ void validate(const DenoiseOptions& o) {
     bad("risk normal smoothing must be in [0, 10000] steps (got " + std::to_string(o.riskNormalSmoothing) + ")");
   if (o.vertexIterations < 1 || o.vertexIterations > 10000)
     bad("vertex iterations must be in [1, 10000] (got " + std::to_string(o.vertexIterations) + ")");
+  if (o.tieProbes < 0 || o.tieProbes > 100) bad("tie probes must be in [0, 100] (got " + std::to_string(o.tieProbes) + ")");
+  if (!(o.tieMargin >= 0) || !std::isfinite(o.tieMargin))
+    bad("tie margin must be >= 0 (got " + std::to_string(o.tieMargin) + ")");
   if (o.probeSpacing < 1 || o.probeSpacing > 100) bad("probe spacing must be in [1, 100] edges (got " + std::to_string(o.probeSpacing) + ")");
   if (!(o.impulseKurtosis > 0) || !std::isfinite(o.impulseKurtosis))
     bad("impulse kurtosis must be > 0 (got " + std::to_string(o.impulseKurtosis) + ")");
@@ -231,6 +235,8 @@ class CandidateRace {
   }
 
   const std::vector<Scored>& scored() const { return scored_; }
+  // The runs' tracks, once the race is over (the scores and the best stay).
+  void releaseRuns() { std::vector<Run>().swap(runs_); }
   // The best candidate by the race's ranking: its positions (moved out) and index in scored().
   std::vector<Vec3> takeBest() { return std::move(best_); }
   size_t bestIndex() const { return bestIndex_; }
@@ -267,6 +273,85 @@ class CandidateRace {
   size_t bestIndex_ = 0;
   double bestValue_ = 0;
 };
+
+// A tie between starts (docs/denoising.md#ties-between-starts): the best candidate of each start
+// within o.tieMargin of the leader's rank is scored again with more probes, other signs on the same
+// vertices, until the leader by mean rank leads every other by three standard errors of the
+// difference or o.tieProbes probes have run. Returns the winner's index in `scored` and moves its
+// positions into x. `leaderX` holds the positions of scored[leaderIndex] (the race's best).
+size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, const Ranking& rank,
+                 const std::vector<CandidateRace::Scored>& scored, size_t chosen, size_t leaderIndex,
+                 std::vector<Vec3>& leaderX, const std::vector<Vec3>& input, const VertexUpdateOptions& inputUpdate,
+                 const Progress& progress, DenoiseResult& result, std::vector<Vec3>& x) {
+  struct Contender {
+    size_t index;
+    std::vector<Vec3> x;
+    std::vector<double> ranks;  // one per probe, the race's first
+    double mean() const { return std::accumulate(ranks.begin(), ranks.end(), 0.0) / ranks.size(); }
+    double variance() const {
+      const double m = mean();
+      double v = 0;
+      for (double r : ranks) v += (r - m) * (r - m);
+      return v / (ranks.size() - 1);
+    }
+  };
+  // The best of each start (ties in rank to the earlier scored).
+  std::vector<Contender> contenders;
+  const double top = rank(scored[chosen].sums);
+  for (size_t i = 0; i < scored.size(); ++i) {
+    const double r = rank(scored[i].sums);
+    if (r > top + o.tieMargin) continue;
+    bool best = true;
+    for (size_t j = 0; j < scored.size() && best; ++j) {
+      const double rj = rank(scored[j].sums);
+      best = scored[j].steps != scored[i].steps || rj > r || (rj == r && j >= i);
+    }
+    if (best) contenders.push_back({i, {}, {r}});
+  }
+  if (contenders.size() < 2 || o.tieProbes == 0) return chosen;
+
+  for (Contender& c : contenders) {
+    const CandidateRace::Scored& s = scored[c.index];
+    if (c.index == leaderIndex && !leaderX.empty()) {
+      c.x = std::move(leaderX);
+      continue;
+    }
+    Track track{input, &inputUpdate};
+    passes.presmooth(track, s.steps);
+    for (int t = 0; t < s.passes; ++t) passes.pass(track, s.rangeBandwidth, result);
+    c.x = std::move(track.positions);
+  }
+  auto leader = [&] {
+    size_t l = 0;
+    for (size_t c = 1; c < contenders.size(); ++c)
+      if (contenders[c].mean() < contenders[l].mean()) l = c;
+    return l;
+  };
+  for (int k = 1; k <= o.tieProbes; ++k) {
+    progress.step(1, "settling a tie");
+    // Seeds apart from the race's (and from small user seeds) by multiples of 2⁶⁴/φ.
+    risk.reseed(o.seed + 0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(k));
+    const std::vector<Vec3> probed = risk.probedInput();
+    const VertexUpdateOptions probedUpdate = passes.updateFrom(probed);
+    for (Contender& c : contenders) {
+      const CandidateRace::Scored& s = scored[c.index];
+      Track xp{probed, &probedUpdate};
+      passes.presmooth(xp, s.steps);
+      for (int t = 0; t < s.passes; ++t) passes.pass(xp, s.rangeBandwidth, result);
+      c.ranks.push_back(rank(risk.sums(c.x, xp.positions)));
+    }
+    result.tieProbes = k;
+    const Contender& l = contenders[leader()];
+    bool apart = true;
+    for (const Contender& c : contenders)
+      if (&c != &l) apart = apart && c.mean() - l.mean() > 3 * std::sqrt((c.variance() + l.variance()) / c.ranks.size());
+    if (apart) break;
+  }
+  risk.reseed(o.seed);
+  Contender& won = contenders[leader()];
+  x = std::move(won.x);
+  return won.index;
+}
 
 }  // namespace
 
@@ -365,7 +450,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   riskOptions.seed = o.seed;
   riskOptions.probeSpacing = o.probeSpacing;
   riskOptions.boundedDivergence = o.boundedDivergence;
-  const RiskEstimate risk(mesh, input, raceSigma, o.strength, riskOptions);
+  RiskEstimate risk(mesh, input, raceSigma, o.strength, riskOptions);
   std::vector<Vec3> probed = risk.probedInput();
   const VertexUpdateOptions probedUpdate = passes.updateFrom(probed);
 
@@ -403,6 +488,14 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     for (size_t i = 0; i < scored.size(); ++i)
       if (rank(scored[i].sums) < rank(scored[chosen].sums)) chosen = i;
   }
+  race.releaseRuns();
+  std::vector<Vec3> x;
+  {
+    std::vector<Vec3> leaderX = race.takeBest();
+    chosen = settleTie(o, passes, risk, rank, scored, chosen, race.bestIndex(), leaderX, input, inputUpdate, progress,
+                       result, x);
+    if (x.empty() && chosen == race.bestIndex()) x = std::move(leaderX);
+  }
   const CandidateRace::Scored& winner = scored[chosen];
   result.presmoothingSteps = winner.steps;
   result.rangeBandwidth = winner.rangeBandwidth;
@@ -413,14 +506,11 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   // winner that set the refined noise level has an estimate of zero by construction.
   const double error = std::sqrt(std::max(0.0, winnerRisk.positionUnbiased));
   result.estimatedError = error >= 0.1 * finalSigma ? error / ael : 0.0;
-  std::vector<Vec3> x;
-  if (chosen != race.bestIndex()) {
+  if (x.empty()) {
     Track track{input, &inputUpdate};
     passes.presmooth(track, winner.steps);
     for (int t = 0; t < winner.passes; ++t) passes.pass(track, winner.rangeBandwidth, result);
     x = std::move(track.positions);
-  } else {
-    x = race.takeBest();
   }
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());
   result.displacementKurtosis = kurtosis(displacements);

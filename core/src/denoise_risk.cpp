@@ -80,6 +80,14 @@ RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double si
   }
 }
 
+void RiskEstimate::reseed(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  for (signed char& b : probe_) {
+    const signed char sign = (rng() >> 63) ? 1 : -1;  // one draw per vertex, as in the constructor
+    if (b != 0) b = sign;
+  }
+}
+
 std::vector<Vec3> RiskEstimate::probedInput() const {
   std::vector<Vec3> out = input_;
   for (size_t v = 0; v < out.size(); ++v)

@@ -47,6 +47,9 @@ class RiskEstimate {
 
   // The input moved by ε b_i N_i at every probed vertex: where the probe's copy of each candidate starts.
   std::vector<Vec3> probedInput() const;
+  // Draws the probe's signs again from `seed`, on the same vertices: another probe of the same
+  // kind, for scoring a candidate more than once.
+  void reseed(std::uint64_t seed);
   // The sums of candidate x, whose copy computed from probedInput() is xp.
   RiskSums sums(const std::vector<Vec3>& x, const std::vector<Vec3>& xp) const;
   // The risk from the sums for a noise level sigma (ranked with sigma × strength).

@@ -72,6 +72,7 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["passes"] = r.passes;
     out["range_bandwidth"] = r.rangeBandwidth;
     out["passes_run"] = r.passesRun;
+    out["tie_probes"] = r.tieProbes;
     out["estimated_error"] = r.estimatedError;
     out["impulse_garrote"] = r.impulseGarrote;
     out["mean_iterations"] = r.meanIterations;

@@ -14,6 +14,7 @@
 #include "geoshift/metrics.hpp"
 #include "geoshift/noise.hpp"
 #include "geoshift/shapes.hpp"
+#include "geoshift/smoothing.hpp"
 #include "denoise_support.hpp"
 
 using namespace geoshift;
@@ -183,6 +184,53 @@ TEST_CASE("default denoising gives the same bits for any thread count", "[denois
   REQUIRE(r1.estimatedError == r2.estimatedError);
 }
 
+// docs/denoising.md#ties-between-starts. A margin wider than any rank makes every start a
+// contender, so the tie is settled on any mesh: the result is then exactly the candidate reported,
+// computed again alone, whichever contender's positions the settling kept; no margin, no tie.
+TEST_CASE("a tie between starts is settled by more probes, and the result is the candidate reported", "[denoise][tie]") {
+  const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
+  DenoiseOptions o;
+  o.tieMargin = 1e9;
+  Mesh m = noisy;
+  const DenoiseResult r = denoise(m, o);
+  INFO("Taubin " << r.presmoothingSteps << " + " << r.passes << " passes at h_r " << r.rangeBandwidth << ", "
+                 << r.tieProbes << " more probes");
+  REQUIRE_FALSE(r.impulseGarrote);
+  REQUIRE(r.tieProbes >= 1);
+  REQUIRE(r.tieProbes <= o.tieProbes);
+
+  Mesh alone = noisy;
+  if (r.passes > 0) {
+    DenoiseOptions fixed;
+    fixed.noiseLevel = r.noiseLevel;
+    fixed.presmoothing = {r.presmoothingSteps};
+    fixed.rangeBandwidths = {r.rangeBandwidth};
+    fixed.fixedPasses = r.passes;
+    denoise(alone, fixed);
+  } else {
+    TaubinOptions t = o.supportSmoothing;
+    t.iterations = r.presmoothingSteps;
+    taubinSmooth(alone, t);
+  }
+  REQUIRE(m.positions() == alone.positions());
+
+  // Threads change nothing in the settling either.
+  Mesh one = noisy;
+  o.threads = 1;
+  const DenoiseResult r1 = denoise(one, o);
+  REQUIRE(one.positions() == m.positions());
+  REQUIRE(r1.tieProbes == r.tieProbes);
+
+  // No margin: no contender but the leader, no probe, the same as without settling.
+  Mesh none = noisy, off = noisy;
+  DenoiseOptions noMargin, noProbes;
+  noMargin.tieMargin = 0;
+  noProbes.tieProbes = 0;
+  REQUIRE(denoise(none, noMargin).tieProbes == 0);
+  REQUIRE(denoise(off, noProbes).tieProbes == 0);
+  REQUIRE(none.positions() == off.positions());
+}
+
 TEST_CASE("denoising a clean plane leaves it planar", "[denoise]") {
   for (DenoisePreset preset : {DenoisePreset::Default, DenoisePreset::Paper}) {
     Mesh m = build(shapes::grid(20, 0.3));
@@ -234,6 +282,8 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.maxPasses = 0; }, "no passes");
   refuses([](DenoiseOptions& o) { o.impulseShrink = -0.5; }, "negative impulse shrink");
   refuses([](DenoiseOptions& o) { o.impulseKurtosis = std::nan(""); }, "NaN impulse kurtosis");
+  refuses([](DenoiseOptions& o) { o.tieProbes = -1; }, "negative tie probes");
+  refuses([](DenoiseOptions& o) { o.tieMargin = std::nan(""); }, "NaN tie margin");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.passes = 0; }, "paper: no passes");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.meanShift.spatialBandwidth = 0; }, "paper: h_s 0");
 

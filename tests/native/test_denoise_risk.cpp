@@ -96,3 +96,29 @@ TEST_CASE("risk estimate: a jump at one probed vertex moves the bounded divergen
   REQUIRE(rawJumped.div < smooth.div - 100 * share);  // the raw quotient swings by far more
   REQUIRE(jumped.fit == rawJumped.fit);
 }
+
+TEST_CASE("risk estimate: another seed draws other signs on the same vertices, and a seed's signs come back",
+          "[denoise][risk]") {
+  NoisySphere s(3);
+  auto& [noisy, input, sigma, work] = s;
+  RiskOptions first, second;
+  second.seed = 99;
+  RiskEstimate risk(work, input, sigma, 1, first);
+  const RiskEstimate other(work, input, sigma, 1, second);
+  const std::vector<Vec3> p1 = risk.probedInput(), p2 = other.probedInput();
+  risk.reseed(99);
+  REQUIRE(risk.probedInput() == p2);  // reseeding draws as the constructor does
+  int moved = 0, flipped = 0;
+  for (int v = 0; v < noisy.vertexCount(); ++v) {
+    const double a = (p1[v] - input[v]).dot(risk.normals()[v]), b = (p2[v] - input[v]).dot(risk.normals()[v]);
+    REQUIRE((a == 0) == (b == 0));  // the same vertices are probed
+    if (a != 0) ++moved;
+    if (a * b < 0) ++flipped;
+  }
+  INFO(flipped << " of " << moved << " probed vertices changed sign");
+  REQUIRE(moved == risk.probedVertices());
+  REQUIRE(flipped > 0);
+  REQUIRE(flipped < moved);
+  risk.reseed(first.seed);
+  REQUIRE(risk.probedInput() == p1);
+}

@@ -89,6 +89,14 @@ struct DenoiseOptions {
   // went one way for the input and the other for the probe, a jump that would swing the risk
   // (docs/denoising.md#the-risk-estimate). false: the raw difference quotient.
   bool boundedDivergence = true;
+  // A tie between starts: when the best candidates of two or more pre-smoothing step counts rank
+  // within tieMargin of the leader's (in units of σ², as the race ranks), each is scored again with
+  // up to tieProbes more probes (other signs on the same vertices) and the one of least mean rank
+  // wins; the probes stop once the leader's lead is three standard errors. One probe's spread would
+  // otherwise let the seed decide between candidates of very different normals
+  // (docs/denoising.md#ties-between-starts). tieProbes 0: never.
+  int tieProbes = 4;
+  double tieMargin = 0.01;
   // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
   // refined from the candidates (the least variance a good one implies) and they are ranked again
   // (docs/denoising.md#the-noise-level).
@@ -128,7 +136,8 @@ struct DenoiseResult {
   int presmoothingSteps = 0;    // chosen
   double rangeBandwidth = 0;    // chosen
   int passes = 0;               // chosen
-  int passesRun = 0;            // computed, all candidates
+  int passesRun = 0;            // computed, all candidates (and the probes of a tie)
+  int tieProbes = 0;            // more probes run to settle a tie between starts (tieProbes option)
   double displacementKurtosis = 0;  // of the winner's displacement along N (impulseKurtosis)
   bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
