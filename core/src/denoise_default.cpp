@@ -131,6 +131,12 @@ class Passes {
     t.positions = work_.positions();
   }
 
+  // A candidate computed alone: `steps` Taubin steps, then `count` passes at h_r.
+  void candidate(Track& t, int steps, int count, double rangeBandwidth, DenoiseResult& result) {
+    presmooth(t, steps);
+    for (int i = 0; i < count; ++i) pass(t, rangeBandwidth, result);
+  }
+
   void pass(Track& t, double rangeBandwidth, DenoiseResult& result) {
     // The track's positions move into the mesh (the update returns new ones): one copy fewer held
     // while the update runs, which is when memory peaks.
@@ -317,8 +323,7 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
       continue;
     }
     Track track{input, &inputUpdate};
-    passes.presmooth(track, s.steps);
-    for (int t = 0; t < s.passes; ++t) passes.pass(track, s.rangeBandwidth, result);
+    passes.candidate(track, s.steps, s.passes, s.rangeBandwidth, result);
     c.x = std::move(track.positions);
   }
   auto leader = [&] {
@@ -336,8 +341,7 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
     for (Contender& c : contenders) {
       const CandidateRace::Scored& s = scored[c.index];
       Track xp{probed, &probedUpdate};
-      passes.presmooth(xp, s.steps);
-      for (int t = 0; t < s.passes; ++t) passes.pass(xp, s.rangeBandwidth, result);
+      passes.candidate(xp, s.steps, s.passes, s.rangeBandwidth, result);
       c.ranks.push_back(rank(risk.sums(c.x, xp.positions)));
     }
     result.tieProbes = k;
@@ -508,8 +512,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   result.estimatedError = error >= 0.1 * finalSigma ? error / ael : 0.0;
   if (x.empty()) {
     Track track{input, &inputUpdate};
-    passes.presmooth(track, winner.steps);
-    for (int t = 0; t < winner.passes; ++t) passes.pass(track, winner.rangeBandwidth, result);
+    passes.candidate(track, winner.steps, winner.passes, winner.rangeBandwidth, result);
     x = std::move(track.positions);
   }
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());
