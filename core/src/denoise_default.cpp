@@ -283,16 +283,18 @@ class CandidateRace {
 // A tie between starts (docs/denoising.md#ties-between-starts): the best candidate of each start
 // within o.tieMargin of the leader's rank is scored again with more probes, other signs on the same
 // vertices, until the leader by mean rank leads every other by three standard errors of the
-// difference or o.tieProbes probes have run. Returns the winner's index in `scored` and moves its
-// positions into x. `leaderX` holds the positions of scored[leaderIndex] (the race's best).
+// difference or o.tieProbes probes have run. Returns the winner's index in `scored`, moves its
+// positions into x and sets `sums` to its sums with the mean divergence of the probes. `leaderX` holds
+// the positions of scored[leaderIndex] (the race's best).
 size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, const Ranking& rank,
                  const std::vector<CandidateRace::Scored>& scored, size_t chosen, size_t leaderIndex,
                  std::vector<Vec3>& leaderX, const std::vector<Vec3>& input, const VertexUpdateOptions& inputUpdate,
-                 const Progress& progress, DenoiseResult& result, std::vector<Vec3>& x) {
+                 const Progress& progress, DenoiseResult& result, std::vector<Vec3>& x, RiskSums& sums) {
   struct Contender {
     size_t index;
     std::vector<Vec3> x;
     std::vector<double> ranks;  // one per probe, the race's first
+    double div = 0;             // their divergences' sum
     double mean() const { return std::accumulate(ranks.begin(), ranks.end(), 0.0) / ranks.size(); }
     double variance() const {
       const double m = mean();
@@ -312,8 +314,9 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
       const double rj = rank(scored[j].sums);
       best = scored[j].steps != scored[i].steps || rj > r || (rj == r && j >= i);
     }
-    if (best) contenders.push_back({i, {}, {r}});
+    if (best) contenders.push_back({i, {}, {r}, scored[i].sums.div});
   }
+  sums = scored[chosen].sums;
   if (contenders.size() < 2 || o.tieProbes == 0) return chosen;
 
   for (Contender& c : contenders) {
@@ -342,7 +345,9 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
       const CandidateRace::Scored& s = scored[c.index];
       Track xp{probed, &probedUpdate};
       passes.candidate(xp, s.steps, s.passes, s.rangeBandwidth, result);
-      c.ranks.push_back(rank(risk.sums(c.x, xp.positions)));
+      const RiskSums probe = risk.sums(c.x, xp.positions);
+      c.ranks.push_back(rank(probe));
+      c.div += probe.div;
     }
     result.tieProbes = k;
     const Contender& l = contenders[leader()];
@@ -354,6 +359,8 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
   risk.reseed(o.seed);
   Contender& won = contenders[leader()];
   x = std::move(won.x);
+  sums = scored[won.index].sums;
+  sums.div = won.div / won.ranks.size();
   return won.index;
 }
 
@@ -494,10 +501,11 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   race.releaseRuns();
   std::vector<Vec3> x;
+  RiskSums winnerSums;
   {
     std::vector<Vec3> leaderX = race.takeBest();
     chosen = settleTie(o, passes, risk, rank, scored, chosen, race.bestIndex(), leaderX, input, inputUpdate, progress,
-                       result, x);
+                       result, x, winnerSums);
     if (x.empty() && chosen == race.bestIndex()) x = std::move(leaderX);
   }
   const CandidateRace::Scored& winner = scored[chosen];
@@ -505,7 +513,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   result.rangeBandwidth = winner.rangeBandwidth;
   result.passes = winner.passes;
   if (finalSigma != raceSigma || raceSigma != lowSigma) result.noiseLevel = finalSigma * o.strength / ael;
-  const Risk winnerRisk = risk.at(winner.sums, finalSigma);
+  const Risk winnerRisk = risk.at(winnerSums, finalSigma);
   // Below a tenth of the noise the estimate is not resolved: one probe's spread is larger, and a
   // winner that set the refined noise level has an estimate of zero by construction.
   const double error = std::sqrt(std::max(0.0, winnerRisk.positionUnbiased));
