@@ -258,8 +258,9 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
     note << "σ " << r.noiseLevel << " AEL; Taubin " << r.presmoothingSteps << " + " << r.passes << " passes"
          << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "")
          << (o.fixedPasses > 0 ? " (fixed)" : "") << (r.impulseGarrote ? ", impulse garrote" : "")
-         << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe") : "") << " (" << r.passesRun
-         << " computed)";
+         << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe")
+                             : "")
+         << " (" << r.passesRun << " computed)";
   }
   return scoreOf(c, m.positions(), note.str(), ms);
 }

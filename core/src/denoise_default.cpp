@@ -303,19 +303,19 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
       return v / (ranks.size() - 1);
     }
   };
-  // The best of each start (ties in rank to the earlier scored).
+  // The best of each start (ties in rank to the earlier scored), if within the margin.
   std::vector<Contender> contenders;
-  const double top = rank(scored[chosen].sums);
   for (size_t i = 0; i < scored.size(); ++i) {
     const double r = rank(scored[i].sums);
-    if (r > top + o.tieMargin) continue;
-    bool best = true;
-    for (size_t j = 0; j < scored.size() && best; ++j) {
-      const double rj = rank(scored[j].sums);
-      best = scored[j].steps != scored[i].steps || rj > r || (rj == r && j >= i);
-    }
-    if (best) contenders.push_back({i, {}, {r}, scored[i].sums.div});
+    auto same = std::find_if(contenders.begin(), contenders.end(),
+                             [&](const Contender& c) { return scored[c.index].steps == scored[i].steps; });
+    if (same == contenders.end())
+      contenders.push_back({i, {}, {r}, scored[i].sums.div});
+    else if (r < same->ranks.front())
+      *same = {i, {}, {r}, scored[i].sums.div};
   }
+  const double top = rank(scored[chosen].sums);
+  std::erase_if(contenders, [&](const Contender& c) { return c.ranks.front() > top + o.tieMargin; });
   sums = scored[chosen].sums;
   if (contenders.size() < 2 || o.tieProbes == 0) return chosen;
 

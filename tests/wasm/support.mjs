@@ -31,9 +31,6 @@ export async function loadGeoshift({ threads = false } = {}) {
   return module;
 }
 
-// --- meshes ----------------------------------------------------------------------------------
-
-// Reads an OFF file of triangles into { positions: Float32Array, indices: Uint32Array }.
 // The median of some numbers (the mean of the middle two for an even count): benchmarks report it.
 export function median(values) {
   const sorted = [...values].sort((a, b) => a - b);
@@ -41,6 +38,9 @@ export function median(values) {
   return sorted.length % 2 ? sorted[mid] : (sorted[mid - 1] + sorted[mid]) / 2;
 }
 
+// --- meshes ----------------------------------------------------------------------------------
+
+// Reads an OFF file of triangles into { positions: Float32Array, indices: Uint32Array }.
 export function readOff(file) {
   const tokens = fs.readFileSync(file, 'utf8').replace(/#.*$/gm, '').split(/\s+/).filter(Boolean);
   if (tokens[0] !== 'OFF') throw new Error(`${file}: not an OFF file`);
