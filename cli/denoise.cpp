@@ -38,8 +38,12 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
   } else if (o.fixedPasses > 0) {
     line << "Taubin " << r.presmoothingSteps << " steps + " << r.passes << " mean shift passes (fixed)";
   } else {
-    line << "Taubin " << r.presmoothingSteps << " steps + " << r.passes << " mean shift passes at h_r " << r.rangeBandwidth
-         << " chosen by SURE (estimated error ";
+    // docs/denoising.md#taubin-only-candidates
+    if (r.taubinOnly)
+      line << "Taubin " << r.presmoothingSteps << " steps (mu " << o.candidateTaubin.mu << "), no mean shift pass,";
+    else
+      line << "Taubin " << r.presmoothingSteps << " steps + " << r.passes << " mean shift passes at h_r " << r.rangeBandwidth;
+    line << " chosen by SURE (estimated error ";
     // The unbiased estimate can come out below zero when the result is much closer to the truth
     // than the noise; that is below what one probe resolves (docs/denoising.md).
     if (r.estimatedError > 0)

@@ -161,7 +161,9 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin;
+  std::optional<double> strength, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, taubinOnlyMargin,
+      taubinOnlyMu;
+  std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes;
   std::optional<bool> refineNoise, halving, boundedDivergence;
@@ -174,6 +176,9 @@ struct WhatIf {
     if (strength) o.strength = *strength;
     if (impulseShrink) o.impulseShrink = *impulseShrink;
     if (impulseKurtosis) o.impulseKurtosis = *impulseKurtosis;
+    if (taubinOnlySteps) o.taubinOnlySteps = *taubinOnlySteps;
+    if (taubinOnlyMargin) o.taubinOnlyMargin = *taubinOnlyMargin;
+    if (taubinOnlyMu) o.candidateTaubin.mu = *taubinOnlyMu;
     if (radius) o.neighborhood.radius = *radius;
     if (spatialBandwidth) o.neighborhood.spatialBandwidth = *spatialBandwidth;
     if (maxPasses) o.maxPasses = *maxPasses;
@@ -255,8 +260,13 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
   if (paper) {
     note << o.paper.passes << " passes";
   } else {
-    note << "σ " << r.noiseLevel << " AEL; Taubin " << r.presmoothingSteps << " + " << r.passes << " passes"
-         << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "")
+    note << "σ " << r.noiseLevel << " AEL; ";
+    if (r.taubinOnly)
+      note << "Taubin only, " << r.presmoothingSteps << " steps";
+    else
+      note << "Taubin " << r.presmoothingSteps << " + " << r.passes << " passes"
+           << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "");
+    note
          << (o.fixedPasses > 0 ? " (fixed)" : "") << (r.impulseGarrote ? ", impulse garrote" : "")
          << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe")
                              : "")
@@ -459,7 +469,8 @@ int usage(const char* error) {
          "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --hs, --patience,\n"
          "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --halving on|off,\n"
          "  --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
-         "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off\n"
+         "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
+         "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu)\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors (slow)\n"
          "  --true-noise       the denoiser is given the true noise level (an oracle experiment)\n"
@@ -506,6 +517,16 @@ int main(int argc, char** argv) {
       else if (a == "--strength") whatIf.strength = std::stod(value());
       else if (a == "--impulse-shrink") whatIf.impulseShrink = std::stod(value());
       else if (a == "--impulse-kurtosis") whatIf.impulseKurtosis = std::stod(value());
+      else if (a == "--taubin-only") {
+        const std::string v = value();
+        whatIf.taubinOnlySteps = std::vector<int>();
+        if (v != "none") {
+          std::stringstream text(v);
+          for (std::string item; std::getline(text, item, ',');) whatIf.taubinOnlySteps->push_back(std::stoi(item));
+        }
+      }
+      else if (a == "--taubin-only-margin") whatIf.taubinOnlyMargin = std::stod(value());
+      else if (a == "--taubin-only-mu") whatIf.taubinOnlyMu = std::stod(value());
       else if (a == "--max-passes") whatIf.maxPasses = std::stoi(value());
       else if (a == "--presmoothing") whatIf.presmoothing = list([](const std::string& s) { return std::stoi(s); });
       else if (a == "--hr") whatIf.range = list([](const std::string& s) { return std::stod(s); });

@@ -57,7 +57,7 @@ try {
     const { box } = analyze(decodePng(await page.getByTestId('canvas').screenshot({ style: '.view-tools, .view-status, .split-line { visibility: hidden; }' })));
     console.error(`${name}: the mesh spans ${(100 * box.width).toFixed(0)}% × ${(100 * box.height).toFixed(0)}% of the view; ${(fs.statSync(out).size / 1024).toFixed(0)} KiB`);
     const s = report.stats[0];
-    rows.push(`| ${name} | ${report.vertices} | ${Number(s.noiseLevel).toFixed(3)} | ${s.presmoothingSteps} + ${s.passes} ` +
+    rows.push(`| ${name} | ${report.vertices} | ${Number(s.noiseLevel).toFixed(3)} | ${s.presmoothingSteps}${s.taubinOnly === 'yes' ? ' (Taubin only)' : ` + ${s.passes}`} ` +
       `| ${(report.computeMs / 1000).toFixed(1)} s | ![${name}](images/denoise-${name}.png) |`);
     console.error(`wrote ${out}`);
     await page.close();

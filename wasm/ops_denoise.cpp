@@ -28,6 +28,7 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("noiseEstimated", r.noiseEstimated ? "yes" : "no");
       out.stats.set("presmoothingSteps", r.presmoothingSteps);
       out.stats.set("passes", r.passes);
+      out.stats.set("taubinOnly", r.taubinOnly ? "yes" : "no");
       out.stats.set("rangeBandwidth", r.rangeBandwidth);
       out.stats.set("passesRun", r.passesRun);
       out.stats.set("tieProbes", r.tieProbes);

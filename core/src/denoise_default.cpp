@@ -32,6 +32,15 @@ void validate(const DenoiseOptions& o) {
   if (o.presmoothing.empty()) bad("presmoothing needs at least one candidate step count");
   for (int k : o.presmoothing)
     if (k < 0 || k > 10000) bad("presmoothing steps must be in [0, 10000] (got " + std::to_string(k) + ")");
+  for (size_t i = 0; i < o.taubinOnlySteps.size(); ++i)
+    if (o.taubinOnlySteps[i] < 1 || o.taubinOnlySteps[i] > 10000 || (i > 0 && o.taubinOnlySteps[i] <= o.taubinOnlySteps[i - 1]))
+      bad("Taubin-only step counts must ascend within [1, 10000] (got " + std::to_string(o.taubinOnlySteps[i]) + " at " +
+          std::to_string(i) + ")");
+  if (!(o.candidateTaubin.lambda > 0) || !(o.candidateTaubin.mu < -o.candidateTaubin.lambda))
+    bad("Taubin-only candidates need lambda > 0 and mu < -lambda (got " + std::to_string(o.candidateTaubin.lambda) + ", " +
+        std::to_string(o.candidateTaubin.mu) + ")");
+  if (!(o.taubinOnlyMargin >= 0) || !std::isfinite(o.taubinOnlyMargin))
+    bad("Taubin-only margin must be >= 0 (got " + std::to_string(o.taubinOnlyMargin) + ")");
   if (o.maxPasses < 1 || o.maxPasses > 10000) bad("maximum passes must be in [1, 10000] (got " + std::to_string(o.maxPasses) + ")");
   if (o.patience < 1) bad("patience must be at least 1 (got " + std::to_string(o.patience) + ")");
   if (o.fixedPasses < 0 || o.fixedPasses > 10000) bad("fixed passes must be in [0, 10000] (got " + std::to_string(o.fixedPasses) + ")");
@@ -131,8 +140,20 @@ class Passes {
     t.positions = work_.positions();
   }
 
-  // A candidate computed alone: `steps` Taubin steps, then `count` passes at h_r.
-  void candidate(Track& t, int steps, int count, double rangeBandwidth, DenoiseResult& result) {
+  // `steps` more steps of the Taubin-only candidates' smoothing (DenoiseOptions::candidateTaubin).
+  void taubinOnly(Track& t, int steps) {
+    TaubinOptions taubin = o_.candidateTaubin;
+    taubin.iterations = steps;
+    taubin.parallel = parallel_;
+    work_.positions() = t.positions;
+    taubinSmooth(work_, taubin);
+    t.positions = work_.positions();
+  }
+
+  // A candidate computed alone: `steps` Taubin steps, then `count` passes at h_r; or, for a Taubin-only
+  // candidate, `steps` steps of its own smoothing.
+  void candidate(Track& t, int steps, bool taubinOnlyCandidate, int count, double rangeBandwidth, DenoiseResult& result) {
+    if (taubinOnlyCandidate) return taubinOnly(t, steps);
     presmooth(t, steps);
     for (int i = 0; i < count; ++i) pass(t, rangeBandwidth, result);
   }
@@ -193,6 +214,7 @@ class CandidateRace {
     int steps, passes;
     double rangeBandwidth;
     RiskSums sums;
+    bool taubinOnly = false;
   };
 
   void add(Run run) {
@@ -240,6 +262,11 @@ class CandidateRace {
     for (size_t i = (active.size() + 1) / 2; i < active.size(); ++i) active[i]->active = false;
   }
 
+  // A Taubin-only candidate: scored once, no passes follow.
+  void addTaubinOnly(int steps, const Track& x, const Track& xp) {
+    offer(steps, 0.0, 0, x.positions, risk_.sums(x.positions, xp.positions), true);
+  }
+
   const std::vector<Scored>& scored() const { return scored_; }
   // The runs' tracks, once the race is over (the scores and the best stay).
   void releaseRuns() { std::vector<Run>().swap(runs_); }
@@ -257,9 +284,10 @@ class CandidateRace {
     if (run.t == 0 || value < run.best) run.best = value;
   }
 
-  double offer(int steps, double hr, int passes, const std::vector<Vec3>& x, const RiskSums& sums) {
+  double offer(int steps, double hr, int passes, const std::vector<Vec3>& x, const RiskSums& sums,
+               bool taubinOnly = false) {
     if (o_.onCandidate) o_.onCandidate(steps, passes, x, risk_.at(sums, rank_.sigma).positionUnbiased);
-    scored_.push_back({steps, passes, hr, sums});
+    scored_.push_back({steps, passes, hr, sums, taubinOnly});
     const double value = rank_(sums);
     if (best_.empty() || value < bestValue_) {
       bestValue_ = value;
@@ -308,14 +336,20 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
   for (size_t i = 0; i < scored.size(); ++i) {
     const double r = rank(scored[i].sums);
     auto same = std::find_if(contenders.begin(), contenders.end(),
-                             [&](const Contender& c) { return scored[c.index].steps == scored[i].steps; });
+                             [&](const Contender& c) {
+                               return scored[c.index].steps == scored[i].steps && scored[c.index].taubinOnly == scored[i].taubinOnly;
+                             });
     if (same == contenders.end())
       contenders.push_back({i, {}, {r}, scored[i].sums.div});
     else if (r < same->ranks.front())
       *same = {i, {}, {r}, scored[i].sums.div};
   }
   const double top = rank(scored[chosen].sums);
-  std::erase_if(contenders, [&](const Contender& c) { return c.ranks.front() > top + o.tieMargin; });
+  // Taubin-only candidates contend only when one won: behind a candidate with passes they lost by the
+  // margin rule, whatever their rank.
+  std::erase_if(contenders, [&](const Contender& c) {
+    return c.ranks.front() > top + o.tieMargin || (scored[c.index].taubinOnly && !scored[chosen].taubinOnly);
+  });
   sums = scored[chosen].sums;
   if (contenders.size() < 2 || o.tieProbes == 0) return chosen;
 
@@ -326,7 +360,7 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
       continue;
     }
     Track track{input, &inputUpdate};
-    passes.candidate(track, s.steps, s.passes, s.rangeBandwidth, result);
+    passes.candidate(track, s.steps, s.taubinOnly, s.passes, s.rangeBandwidth, result);
     c.x = std::move(track.positions);
   }
   auto leader = [&] {
@@ -344,7 +378,7 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
     for (Contender& c : contenders) {
       const CandidateRace::Scored& s = scored[c.index];
       Track xp{probed, &probedUpdate};
-      passes.candidate(xp, s.steps, s.passes, s.rangeBandwidth, result);
+      passes.candidate(xp, s.steps, s.taubinOnly, s.passes, s.rangeBandwidth, result);
       const RiskSums probe = risk.sums(c.x, xp.positions);
       c.ranks.push_back(rank(probe));
       c.div += probe.div;
@@ -479,6 +513,17 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       race.add(std::move(run));
     }
   }
+  {
+    // Taubin-only candidates, each step count continued from the last.
+    Track x{input, &inputUpdate}, xp{probed, &probedUpdate};
+    int done = 0;
+    for (int steps : o.taubinOnlySteps) {
+      passes.taubinOnly(x, steps - done);
+      passes.taubinOnly(xp, steps - done);
+      done = steps;
+      race.addTaubinOnly(steps, x, xp);
+    }
+  }
   std::vector<Vec3>().swap(probed);  // the probe tracks have started from it
   race.run(passes, progress);
 
@@ -499,6 +544,13 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     for (size_t i = 0; i < scored.size(); ++i)
       if (rank(scored[i].sums) < rank(scored[chosen].sums)) chosen = i;
   }
+  if (scored[chosen].taubinOnly) {
+    // A Taubin-only winner must lead the best candidate with passes by the margin.
+    size_t best = scored.size();
+    for (size_t i = 0; i < scored.size(); ++i)
+      if (!scored[i].taubinOnly && (best == scored.size() || rank(scored[i].sums) < rank(scored[best].sums))) best = i;
+    if (best < scored.size() && rank(scored[best].sums) - rank(scored[chosen].sums) < o.taubinOnlyMargin) chosen = best;
+  }
   race.releaseRuns();
   std::vector<Vec3> x;
   RiskSums winnerSums;
@@ -510,6 +562,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   const CandidateRace::Scored& winner = scored[chosen];
   result.presmoothingSteps = winner.steps;
+  result.taubinOnly = winner.taubinOnly;
   result.rangeBandwidth = winner.rangeBandwidth;
   result.passes = winner.passes;
   if (finalSigma != raceSigma || raceSigma != lowSigma) result.noiseLevel = finalSigma * o.strength / ael;
@@ -520,7 +573,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   result.estimatedError = error >= 0.1 * finalSigma ? error / ael : 0.0;
   if (x.empty()) {
     Track track{input, &inputUpdate};
-    passes.candidate(track, winner.steps, winner.passes, winner.rangeBandwidth, result);
+    passes.candidate(track, winner.steps, winner.taubinOnly, winner.passes, winner.rangeBandwidth, result);
     x = std::move(track.positions);
   }
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());

@@ -122,6 +122,9 @@ class DenoiseOptions:
     neighborhood: FaceNeighborhoodOptions
     support_smoothing: TaubinOptions
     presmoothing: List[int]
+    taubin_only_steps: List[int]
+    candidate_taubin: TaubinOptions
+    taubin_only_margin: float
     max_passes: int
     patience: int
     fixed_passes: int
@@ -138,6 +141,8 @@ class DenoiseOptions:
                  strength: float = 1.0, range_bandwidths: Sequence[float] = (0.35, 0.5),
                  neighborhood: Union[FaceNeighborhoodOptions, dict, None] = None,
                  support_smoothing: Union[TaubinOptions, dict, None] = None, presmoothing: Sequence[int] = (3, 15),
+                 taubin_only_steps: Sequence[int] = (5, 8, 12, 18, 27, 40, 60, 90),
+                 candidate_taubin: Union[TaubinOptions, dict, None] = None, taubin_only_margin: float = 0.005,
                  max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
                  impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,

@@ -70,6 +70,7 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["noise_estimated"] = r.noiseEstimated;
     out["presmoothing_steps"] = r.presmoothingSteps;
     out["passes"] = r.passes;
+    out["taubin_only"] = r.taubinOnly;
     out["range_bandwidth"] = r.rangeBandwidth;
     out["passes_run"] = r.passesRun;
     out["tie_probes"] = r.tieProbes;

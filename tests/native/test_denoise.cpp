@@ -208,7 +208,7 @@ TEST_CASE("a tie between starts is settled by more probes, and the result is the
     fixed.fixedPasses = r.passes;
     denoise(alone, fixed);
   } else {
-    TaubinOptions t = o.supportSmoothing;
+    TaubinOptions t = r.taubinOnly ? o.candidateTaubin : o.supportSmoothing;
     t.iterations = r.presmoothingSteps;
     taubinSmooth(alone, t);
   }
@@ -229,6 +229,44 @@ TEST_CASE("a tie between starts is settled by more probes, and the result is the
   REQUIRE(denoise(none, noMargin).tieProbes == 0);
   REQUIRE(denoise(off, noProbes).tieProbes == 0);
   REQUIRE(none.positions() == off.positions());
+}
+
+// docs/denoising.md#taubin-only-candidates. A smooth sphere under dense Gaussian noise, where the
+// candidates with passes may start only from the raw input and run at most one pass: smoothing it
+// with many Taubin steps is far better, so a Taubin-only candidate must win, and the result must be
+// exactly that smoothing of the input, at one of the step counts offered. A margin wider than any
+// rank keeps the candidates with passes.
+TEST_CASE("a Taubin-only candidate wins where passes cannot smooth enough, and is exactly its smoothing", "[denoise][taubin-only]") {
+  const Mesh clean = build(shapes::icosphere(4));
+  const Mesh noisy = withNormalNoise(clean, 0.5, 21);
+  DenoiseOptions o;
+  o.presmoothing = {0};
+  o.maxPasses = 1;
+  Mesh m = noisy;
+  const DenoiseResult r = denoise(m, o);
+  INFO("Taubin " << r.presmoothingSteps << " + " << r.passes << " passes, Taubin only: " << r.taubinOnly);
+  REQUIRE(r.taubinOnly);
+  REQUIRE(r.passes == 0);
+  REQUIRE(std::find(o.taubinOnlySteps.begin(), o.taubinOnlySteps.end(), r.presmoothingSteps) != o.taubinOnlySteps.end());
+  Mesh alone = noisy;
+  TaubinOptions t = o.candidateTaubin;
+  t.iterations = r.presmoothingSteps;
+  taubinSmooth(alone, t);
+  REQUIRE(m.positions() == alone.positions());
+  REQUIRE(rmsTo(m, clean) < 0.5 * rmsTo(noisy, clean));
+
+  // The same with one thread: the same bits.
+  Mesh one = noisy;
+  o.threads = 1;
+  denoise(one, o);
+  REQUIRE(one.positions() == m.positions());
+
+  // A margin no Taubin-only candidate can lead by: a candidate with passes wins.
+  Mesh kept = noisy;
+  o.taubinOnlyMargin = 1e9;
+  const DenoiseResult rk = denoise(kept, o);
+  REQUIRE_FALSE(rk.taubinOnly);
+  REQUIRE(rk.presmoothingSteps == 0);
 }
 
 TEST_CASE("denoising a clean plane leaves it planar", "[denoise]") {
@@ -284,6 +322,10 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.impulseKurtosis = std::nan(""); }, "NaN impulse kurtosis");
   refuses([](DenoiseOptions& o) { o.tieProbes = -1; }, "negative tie probes");
   refuses([](DenoiseOptions& o) { o.tieMargin = std::nan(""); }, "NaN tie margin");
+  refuses([](DenoiseOptions& o) { o.taubinOnlySteps = {8, 5}; }, "Taubin-only steps descending");
+  refuses([](DenoiseOptions& o) { o.taubinOnlySteps = {0, 5}; }, "Taubin-only steps 0");
+  refuses([](DenoiseOptions& o) { o.candidateTaubin.mu = -0.4; }, "Taubin-only mu above -lambda");
+  refuses([](DenoiseOptions& o) { o.taubinOnlyMargin = -0.01; }, "negative Taubin-only margin");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.passes = 0; }, "paper: no passes");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.meanShift.spatialBandwidth = 0; }, "paper: h_s 0");
 

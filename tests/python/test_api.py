@@ -216,3 +216,18 @@ def test_denoise_says_when_the_noise_looks_impulsive(terrain):
     def rms(m):
         return np.sqrt(np.mean(np.sum((m.positions - p) ** 2, axis=1)))
     assert rms(on.mesh) < rms(off.mesh) < rms(noisy)
+
+
+def test_denoise_reports_a_taubin_only_winner(terrain):
+    """docs/denoising.md#taubin-only-candidates: where the candidates with passes may start only from
+    the raw input and run one pass, a Taubin-only candidate wins under dense noise, reported as such
+    with no pass; with none offered, it cannot."""
+    p, f = terrain.positions, terrain.faces
+    ael = np.mean(np.linalg.norm(p[f[:, [1, 2, 0]]] - p[f], axis=2))
+    noisy = terrain.copy()
+    noisy.positions = p + np.random.default_rng(8).normal(0, 0.5 * ael, p.shape)
+    on = geoshift.denoise(noisy, presmoothing=[0], max_passes=1)
+    off = geoshift.denoise(noisy, presmoothing=[0], max_passes=1, taubin_only_steps=[])
+    assert on.stats["taubin_only"] is True and on.stats["passes"] == 0
+    assert on.stats["presmoothing_steps"] in geoshift.DenoiseOptions().taubin_only_steps
+    assert off.stats["taubin_only"] is False

@@ -280,7 +280,9 @@ export class FilterControls {
         const level = (estimate.noiseLevel as number).toPrecision(2);
         rows.push(['Noise level', `${level} × AEL${estimate.noiseEstimated === 'yes' ? ' (measured on the mesh)' : ''}`]);
         if (typeof estimate.presmoothingSteps === 'number' && typeof estimate.passes === 'number')
-          rows.push(['Chosen', `${counted(estimate.presmoothingSteps, 'Taubin step')} + ${counted(estimate.passes, 'pass', 'passes')}` +
+          rows.push(['Chosen', (estimate.taubinOnly === 'yes'
+            ? `${counted(estimate.presmoothingSteps, 'Taubin step')} alone (no pass)`
+            : `${counted(estimate.presmoothingSteps, 'Taubin step')} + ${counted(estimate.passes, 'pass', 'passes')}`) +
             (typeof estimate.rangeBandwidth === 'number' && estimate.rangeBandwidth > 0 ? ` at Keep edges ${estimate.rangeBandwidth}` : '') +
             (estimate.impulseGarrote === 'yes' ? '; impulsive noise: only the outliers moved' : '')]);
       }

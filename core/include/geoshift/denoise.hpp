@@ -70,6 +70,19 @@ struct DenoiseOptions {
   // Candidate Taubin steps before the passes; the risk estimate picks one (and its pass count).
   // The candidates race: one clearly behind the leader stops early (docs/denoising.md#the-default-pipeline).
   std::vector<int> presmoothing = {3, 15};
+  // Taubin-only candidates: the input smoothed by candidateTaubin to each of these step counts
+  // (ascending), each scored once and never followed by passes. candidateTaubin's μ −0.502 puts the
+  // pass band near zero, so that many steps do not swell the low frequencies as MeshLab's μ −0.53
+  // does. One wins only when it ranks taubinOnlyMargin (in units of σ²) below the best candidate
+  // with passes: a feature-preserving candidate of nearly the same risk along the normals keeps
+  // better normals (docs/denoising.md#taubin-only-candidates). Empty: none.
+  std::vector<int> taubinOnlySteps = {5, 8, 12, 18, 27, 40, 60, 90};
+  TaubinOptions candidateTaubin = [] {
+    TaubinOptions t;
+    t.mu = -0.502;
+    return t;
+  }();
+  double taubinOnlyMargin = 0.005;
   int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk
   int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
@@ -134,6 +147,7 @@ struct DenoiseResult {
   double noiseLevel = 0;        // used, in average edge lengths (after `strength`)
   bool noiseEstimated = false;  // from the mesh (noiseLevel option 0)
   int presmoothingSteps = 0;    // chosen
+  bool taubinOnly = false;      // the winner is presmoothingSteps of candidateTaubin, no pass (passes 0)
   double rangeBandwidth = 0;    // chosen
   int passes = 0;               // chosen
   int passesRun = 0;            // computed, all candidates (and the probes of a tie)
