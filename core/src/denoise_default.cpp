@@ -104,6 +104,8 @@ class Passes {
     parallel_.threads = o.threads;
     taubin_ = o.supportSmoothing;
     taubin_.parallel = parallel_;
+    candidateTaubin_ = o.candidateTaubin;
+    candidateTaubin_.parallel = parallel_;
     // Neighbourhoods on a smoothed support, found once.
     progress.step(0, "support");
     FaceNeighborhoodOptions hoodOptions = o.neighborhood;
@@ -131,24 +133,10 @@ class Passes {
     return update;
   }
 
-  void presmooth(Track& t, int steps) {
-    if (steps == 0) return;
-    TaubinOptions taubin = taubin_;
-    taubin.iterations = steps;
-    work_.positions() = t.positions;
-    taubinSmooth(work_, taubin);
-    t.positions = work_.positions();
-  }
+  void presmooth(Track& t, int steps) { smooth(t, taubin_, steps); }
 
   // `steps` more steps of the Taubin-only candidates' smoothing (DenoiseOptions::candidateTaubin).
-  void taubinOnly(Track& t, int steps) {
-    TaubinOptions taubin = o_.candidateTaubin;
-    taubin.iterations = steps;
-    taubin.parallel = parallel_;
-    work_.positions() = t.positions;
-    taubinSmooth(work_, taubin);
-    t.positions = work_.positions();
-  }
+  void taubinOnly(Track& t, int steps) { smooth(t, candidateTaubin_, steps); }
 
   // A candidate computed alone: `steps` Taubin steps, then `count` passes at h_r; or, for a Taubin-only
   // candidate, `steps` steps of its own smoothing.
@@ -173,7 +161,15 @@ class Passes {
   Mesh& work_;
   const DenoiseOptions& o_;
   ParallelOptions parallel_;
-  TaubinOptions taubin_;
+  void smooth(Track& t, TaubinOptions taubin, int steps) {
+    if (steps == 0) return;
+    taubin.iterations = steps;
+    work_.positions() = t.positions;
+    taubinSmooth(work_, taubin);
+    t.positions = work_.positions();
+  }
+
+  TaubinOptions taubin_, candidateTaubin_;
   FaceNeighborhoods hoods_;
 };
 
