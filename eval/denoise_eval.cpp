@@ -44,9 +44,16 @@ using namespace geoshift::eval;
 namespace {
 
 // One method's figures on one case.
+// One candidate the race computed, scored against the truth (--trace).
+struct CandidateScore {
+  int steps = 0, passes = 0;
+  double rms = NAN, angle = NAN;
+};
+
 struct Score {
   double rms = NAN, angle = NAN, ms = -1;  // RMS ×10², mean face-normal angle (°), wall clock
   std::string note;
+  std::vector<CandidateScore> candidates;  // --trace: every candidate computed, before the impulse correction
   bool present() const { return std::isfinite(rms); }
 };
 
@@ -54,7 +61,7 @@ Score scoreOf(const Case& c, std::vector<Vec3> positions, std::string note, doub
   Mesh result = c.noisy;
   result.positions() = std::move(positions);
   return {100 * pointToSurface(result.positions(), c.clean).rms, meanNormalAngleError(result, c.clean), ms,
-          std::move(note)};
+          std::move(note), {}};
 }
 
 double msSince(std::chrono::steady_clock::time_point t0) {
@@ -231,6 +238,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
     if (w.trueNoise) o.noiseLevel = trueNoiseLevel(c);
   }
   std::ostringstream trace;
+  std::vector<CandidateScore> candidates;
   if (w.trace && !paper) {
     // Every candidate's risks against the truth (slow: two distance queries per candidate).
     trace.precision(4);
@@ -243,6 +251,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
     const std::vector<Vec3> N = vertexNormals(smoothed);
     o.onCandidate = [&, N](int steps, int passes, const std::vector<Vec3>& x, double positionRisk) {
       const Score s = scoreOf(c, x, "", -1);
+      candidates.push_back({steps, passes, s.rms, s.angle});
       const double ael = averageEdgeLength(c.noisy);
       double along = 0;
       for (size_t v = 0; v < x.size(); ++v) along += std::pow((x[v] - c.clean.position(v)).dot(N[v]), 2);
@@ -272,7 +281,9 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
                              : "")
          << " (" << r.passesRun << " computed)";
   }
-  return scoreOf(c, m.positions(), note.str(), ms);
+  Score score = scoreOf(c, m.positions(), note.str(), ms);
+  score.candidates = std::move(candidates);
+  return score;
 }
 
 // --- verdicts -------------------------------------------------------------------------------------
@@ -314,6 +325,43 @@ std::string fixed(double x, int digits) {
 }
 
 std::string pairOf(const Score& s) { return s.present() ? fixed(s.rms, 3) + " / " + fixed(s.angle, 2) : "–"; }
+
+// With --trace: whether what is lost is lost to the choice or for want of a candidate. A case is
+// within reach when some candidate the race computed (at the first probe seed, scored before the
+// impulse correction) or the default's own result wins it.
+std::string ceiling(const std::vector<const Result*>& rows) {
+  if (rows.empty() || rows.front()->ours.front().candidates.empty()) return "";
+  int reachable = 0;
+  std::vector<std::string> toChoice, toFamily;
+  for (const Result* r : rows) {
+    const Score& o = r->ours.front();
+    const CandidateScore* best = nullptr;
+    for (const CandidateScore& k : o.candidates) {
+      Score as;
+      as.rms = k.rms;
+      as.angle = k.angle;
+      if (verdict(as, r->taubin, r->bilateral).win && (!best || k.rms < best->rms)) best = &k;
+    }
+    const bool won = verdict(o, r->taubin, r->bilateral).win;
+    reachable += won || best;
+    if (won) continue;
+    const std::string name = r->c->mesh + ", " + r->c->noise;
+    if (best)
+      toChoice.push_back(name + " (" + std::to_string(best->steps) + " steps + " + std::to_string(best->passes) +
+                         " passes: " + fixed(best->rms, 3) + " / " + fixed(best->angle, 2) + ")");
+    else
+      toFamily.push_back(name);
+  }
+  std::ostringstream s;
+  s << "\nWith a perfect choice among the candidates computed (`--trace`; scored before the impulse correction, the "
+       "default's own result counted): "
+    << reachable << " of " << rows.size() << " within reach.\n\nLost to the choice:";
+  for (size_t i = 0; i < toChoice.size(); ++i) s << (i ? "; " : " ") << toChoice[i];
+  s << (toChoice.empty() ? " none" : "") << ".\n\nNo candidate wins:";
+  for (size_t i = 0; i < toFamily.size(); ++i) s << (i ? "; " : " ") << toFamily[i];
+  s << (toFamily.empty() ? " none" : "") << ".\n";
+  return s.str();
+}
 
 std::string lower(std::string s) {
   for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
@@ -441,6 +489,7 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
     for (size_t i = 0; i < misses.size(); ++i) s << (i ? "; " : " ") << misses[i];
     s << ".\n";
   }
+  s << ceiling(rows);
   for (const Result* r : rows) {
     if (!r->gcn.present()) continue;
     const Score& o = r->ours.front();
@@ -472,7 +521,8 @@ int usage(const char* error) {
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu)\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
-         "  --trace            every candidate's risk estimates against its true errors (slow)\n"
+         "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
+         "                     choice among the candidates would win (slow)\n"
          "  --true-noise       the denoiser is given the true noise level (an oracle experiment)\n"
          "  --cache DIR        the oracles' score cache (default build/eval-cache); --no-cache to recompute\n"
          "  --markdown FILE    also write the report to FILE\n"
