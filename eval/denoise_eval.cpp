@@ -43,13 +43,13 @@ using namespace geoshift::eval;
 
 namespace {
 
-// One method's figures on one case.
 // One candidate the race computed, scored against the truth (--trace).
 struct CandidateScore {
   int steps = 0, passes = 0;
   double rms = NAN, angle = NAN;
 };
 
+// One method's figures on one case.
 struct Score {
   double rms = NAN, angle = NAN, ms = -1;  // RMS ×10², mean face-normal angle (°), wall clock
   std::string note;
