@@ -134,14 +134,14 @@ std::vector<std::pair<std::string, Set>> splitFamilies(const std::vector<MeshEnt
   return out;
 }
 
-std::vector<NoiseSpec> noisesFor(const std::string& meshName) {
+std::vector<NoiseSpec> noisesFor(const std::string& meshName, std::uint64_t seed) {
   const double levels[] = {0.2, 0.3, 0.5, 0.7};
-  auto spec = [](NoiseDistribution d, double amount, NoiseDirection dir) {
+  auto spec = [seed](NoiseDistribution d, double amount, NoiseDirection dir) {
     NoiseSpec s;
     s.options.distribution = d;
     s.options.amount = amount;
     s.options.direction = dir;
-    s.options.seed = 1;
+    s.options.seed = seed;
     std::ostringstream label;
     label << (d == NoiseDistribution::Fixed       ? "fixed "
               : d == NoiseDistribution::Uniform   ? "uniform [0, "

@@ -53,8 +53,9 @@ std::vector<std::pair<std::string, Set>> splitFamilies(const std::vector<MeshEnt
 
 // The synthetic noises of a mesh: the paper's two readings of 0.5 AEL in random directions (fixed
 // and uniform magnitude), Gaussian and impulsive noise at a level and in a direction picked by the
-// hash of the mesh's name and the kind.
-std::vector<NoiseSpec> noisesFor(const std::string& meshName);
+// hash of the mesh's name and the kind. `seed`: the noise's realization (the scoreboard's is 1; the
+// kinds, levels and directions do not depend on it).
+std::vector<NoiseSpec> noisesFor(const std::string& meshName, std::uint64_t seed = 1);
 
 struct Pair {
   std::string name, family, clean, noisy, gcnResult;
