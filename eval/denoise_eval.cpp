@@ -168,8 +168,8 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, taubinOnlyMargin,
-      taubinOnlyMu;
+  std::optional<double> strength, detailBoundRatio, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin,
+      taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes;
@@ -181,6 +181,7 @@ struct WhatIf {
 
   void apply(DenoiseOptions& o) const {
     if (strength) o.strength = *strength;
+    if (detailBoundRatio) o.detailBoundRatio = *detailBoundRatio;
     if (impulseShrink) o.impulseShrink = *impulseShrink;
     if (impulseKurtosis) o.impulseKurtosis = *impulseKurtosis;
     if (taubinOnlySteps) o.taubinOnlySteps = *taubinOnlySteps;
@@ -517,9 +518,9 @@ int usage(const char* error) {
          "  --split            print the families of each set and exit\n"
          "  --oracles-only     only fill the oracles' cache (no denoiser, no report)\n"
          "  --noise-estimate   only the estimated against the true noise level of each case\n"
-         "  --strength, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations, --radius, --hs, --patience,\n"
-         "  --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off, --halving on|off,\n"
-         "  --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
+         "  --strength, --detail-bound-ratio, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations,\n"
+         "  --radius, --hs, --patience, --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off,\n"
+         "  --halving on|off, --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu)\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
@@ -569,6 +570,7 @@ int main(int argc, char** argv) {
       else if (a == "--noise-seed") noiseSeed = std::stoull(value());
       else if (a == "--jobs") jobs = std::max(1, std::stoi(value()));
       else if (a == "--strength") whatIf.strength = std::stod(value());
+      else if (a == "--detail-bound-ratio") whatIf.detailBoundRatio = std::stod(value());
       else if (a == "--impulse-shrink") whatIf.impulseShrink = std::stod(value());
       else if (a == "--impulse-kurtosis") whatIf.impulseKurtosis = std::stod(value());
       else if (a == "--taubin-only") {

@@ -26,6 +26,8 @@ void validate(const DenoiseOptions& o) {
   if (!(o.noiseLevel >= 0) || !std::isfinite(o.noiseLevel))
     bad("noise level must be >= 0 (0: estimate it; got " + std::to_string(o.noiseLevel) + ")");
   if (!(o.strength > 0) || !std::isfinite(o.strength)) bad("strength must be > 0 (got " + std::to_string(o.strength) + ")");
+  if (!(o.detailBoundRatio >= 0 && o.detailBoundRatio <= 1))
+    bad("detail bound ratio must be within [0, 1] (got " + std::to_string(o.detailBoundRatio) + ")");
   if (o.rangeBandwidths.empty()) bad("range bandwidths need at least one candidate h_r");
   for (double hr : o.rangeBandwidths)
     if (!(hr > 0) || !std::isfinite(hr)) bad("range bandwidth h_r must be > 0 (got " + std::to_string(hr) + ")");
@@ -530,11 +532,15 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   double finalSigma = raceSigma;
   rank.sigma = finalSigma;
   if (o.refineNoise && result.noiseEstimated) {
-    double implied = raceSigma * raceSigma;
+    double implied = raceSigma * raceSigma, linearImplied = implied;
     for (const auto& c : scored) {
       const double v = risk.impliedVariance(c.sums);
       if (v > 0) implied = std::min(implied, v);
+      const double w = c.passes == 0 ? risk.linearImpliedVariance(c.sums) : 0.0;
+      if (w > 0) linearImplied = std::min(linearImplied, w);
     }
+    const double ratio = o.detailBoundRatio;
+    if (linearImplied < ratio * ratio * implied) implied = linearImplied;
     finalSigma = std::clamp(std::sqrt(implied), 0.5 * lowSigma, raceSigma);
     rank.sigma = finalSigma;
     for (size_t i = 0; i < scored.size(); ++i)

@@ -6,6 +6,8 @@
 // and tr J ≈ bᵀ (x' − x)·N / ε for a ±1 probe b, x' = D(y + ε b N). With boundedDivergence each
 // probed vertex's term b_i (x'_i − x_i)·N_i / ε is kept within [0, 1], the range of a smoother's own
 // derivative J_ii: a larger one is a jump, not a derivative (docs/denoising.md#the-risk-estimate).
+// The gain ‖(x' − x)·N / ε‖² estimates tr JᵀJ the same way, each vertex's term kept at most 1; for a
+// linear candidate it tightens the bound on σ² (docs/denoising.md#the-noise-level).
 #include "denoise_risk.hpp"
 
 #include <algorithm>
@@ -96,17 +98,19 @@ std::vector<Vec3> RiskEstimate::probedInput() const {
 }
 
 RiskSums RiskEstimate::sums(const std::vector<Vec3>& x, const std::vector<Vec3>& xp) const {
-  double fit = 0, div = 0;
+  double fit = 0, div = 0, gain = 0;
   for (size_t v = 0; v < x.size(); ++v) {
     const double e = (x[v] - input_[v]).dot(normals_[v]);
     fit += e * e;
+    const double response = (xp[v] - x[v]).dot(normals_[v]) / eps_;
+    gain += std::min(response * response, 1.0);  // a jump counts as a full response, as in div
     if (probe_[v] == 0) continue;
-    const double term = probe_[v] * (xp[v] - x[v]).dot(normals_[v]) / eps_;
+    const double term = probe_[v] * response;
     div += boundedDivergence_ ? std::clamp(term, 0.0, 1.0) : term;
   }
   // The probe covers probed_ of the measured_ vertices: the trace is scaled up to all of them.
   const double scale = probed_ > 0 ? static_cast<double>(measured_) / probed_ : 0.0;
-  return {fit, div * scale};
+  return {fit, div * scale, gain * scale};
 }
 
 Risk RiskEstimate::at(const RiskSums& r, double sigma) const {
@@ -115,9 +119,18 @@ Risk RiskEstimate::at(const RiskSums& r, double sigma) const {
   return {position(sigma * strength_), position(sigma)};
 }
 
+namespace {
+double boundOver(double fit, double denominator, double m) { return denominator > 0.5 * m ? fit / denominator : 0.0; }
+}  // namespace
+
 double RiskEstimate::impliedVariance(const RiskSums& r) const {
-  const double m = std::max(1, measured_), dof = m - 2 * r.div;
-  return dof > 0.5 * m ? r.fit / dof : 0.0;
+  const double m = std::max(1, measured_);
+  return boundOver(r.fit, m - 2 * r.div, m);
+}
+
+double RiskEstimate::linearImpliedVariance(const RiskSums& r) const {
+  const double m = std::max(1, measured_);
+  return boundOver(r.fit, m - 2 * r.div + r.gain, m);
 }
 
 }  // namespace geoshift::denoise_detail

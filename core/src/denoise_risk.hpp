@@ -33,10 +33,11 @@ struct Risk {
   double position = 0, positionUnbiased = 0;
 };
 
-// What the risk is made of, for one candidate: Σ e² and the divergence (scaled to all vertices).
-// The risk for any σ follows from them (RiskEstimate::at).
+// What the risk is made of, for one candidate: Σ e², the divergence and the gain
+// Σ_v ((x'_v − x_v)·N_v / ε)², an estimate of tr JᵀJ (both scaled to all vertices). The risk for any
+// σ follows from the first two (RiskEstimate::at), the gain serves the noise level's bound.
 struct RiskSums {
-  double fit = 0, div = 0;
+  double fit = 0, div = 0, gain = 0;
 };
 
 class RiskEstimate {
@@ -59,6 +60,10 @@ class RiskEstimate {
   // candidates bounds the noise from above (docs/denoising.md#the-noise-level); 0 when
   // m − 2 div <= m / 2 (a light candidate says nothing).
   double impliedVariance(const RiskSums& s) const;
+  // For a linear candidate (Taubin steps alone) a tighter bound, Σ e² / (m − 2 div + gain): there
+  // E Σ e² is σ² (m − 2 tr J + tr JᵀJ) plus what the smoothing takes from the clean mesh, so only
+  // that part lifts it above σ². 0 when the denominator is at most m / 2.
+  double linearImpliedVariance(const RiskSums& s) const;
 
   // N at every vertex; zero where a vertex has none (not measured).
   const std::vector<Vec3>& normals() const { return normals_; }

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "geoshift/denoise.hpp"
 #include "geoshift/error.hpp"
@@ -171,6 +172,31 @@ TEST_CASE("strength smooths more, a given noise level is used as given", "[denoi
   REQUIRE(rc.noiseLevel == 0.123);
 }
 
+TEST_CASE("fine detail read as noise: the Taubin candidates' bound takes the noise level back down", "[denoise][noise]") {
+  // A sphere with bumps six edges across and 1.2 AEL high: the noise estimate's local fits read
+  // them as noise.
+  Mesh clean = build(shapes::icosphere(4));
+  const double ael = averageEdgeLength(clean), wave = 2 * std::numbers::pi / (6 * ael);
+  for (Vec3& p : clean.positions()) {
+    const Vec3 u = p.normalized();
+    p = u * (1 + 1.2 * ael * std::sin(wave * u.x()) * std::sin(wave * u.y()) * std::sin(wave * u.z()));
+  }
+  const double amount = 0.15;
+  const Mesh noisy = withNormalNoise(clean, amount, 3);
+  Mesh a = noisy, b = noisy;
+  DenoiseOptions o;
+  const DenoiseResult withBound = denoise(a, o);
+  o.detailBoundRatio = 0;
+  const DenoiseResult without = denoise(b, o);
+  const double estimate = estimateNoise(noisy).level;
+  INFO("true " << amount << " AEL, estimate " << estimate << ", refined " << without.noiseLevel << ", with the bound "
+               << withBound.noiseLevel << "; RMS " << rmsTo(b, clean) / ael << " → " << rmsTo(a, clean) / ael << " AEL");
+  REQUIRE(estimate > 1.3 * amount);  // the detail reads as noise
+  REQUIRE(withBound.noiseLevel < 0.9 * without.noiseLevel);
+  REQUIRE(std::abs(withBound.noiseLevel - amount) < std::abs(without.noiseLevel - amount));
+  REQUIRE(rmsTo(a, clean) < rmsTo(b, clean));
+}
+
 TEST_CASE("default denoising gives the same bits for any thread count", "[denoise][threads]") {
   const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
   Mesh one = noisy, two = noisy;
@@ -326,6 +352,8 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.taubinOnlySteps = {0, 5}; }, "Taubin-only steps 0");
   refuses([](DenoiseOptions& o) { o.candidateTaubin.mu = -0.4; }, "Taubin-only mu above -lambda");
   refuses([](DenoiseOptions& o) { o.taubinOnlyMargin = -0.01; }, "negative Taubin-only margin");
+  refuses([](DenoiseOptions& o) { o.detailBoundRatio = 1.5; }, "detail bound ratio above 1");
+  refuses([](DenoiseOptions& o) { o.detailBoundRatio = std::nan(""); }, "NaN detail bound ratio");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.passes = 0; }, "paper: no passes");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.meanShift.spatialBandwidth = 0; }, "paper: h_s 0");
 

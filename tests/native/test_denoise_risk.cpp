@@ -122,3 +122,50 @@ TEST_CASE("risk estimate: another seed draws other signs on the same vertices, a
   risk.reseed(first.seed);
   REQUIRE(risk.probedInput() == p1);
 }
+
+TEST_CASE("risk estimate: the probe's gain of Taubin smoothing matches its exact tr JᵀJ", "[denoise][risk]") {
+  NoisySphere s(11);
+  auto& [noisy, input, sigma, work] = s;
+  const RiskEstimate risk(work, input, sigma, 1, RiskOptions{});
+  const std::vector<Vec3>& n = risk.normals();
+  const std::vector<Vec3> x = taubin(work, input, 8);
+  const RiskSums sums = risk.sums(x, taubin(work, risk.probedInput(), 8));
+  // Exact: the squared length of every column of J (one vertex moved along its N at a time).
+  double exact = 0;
+  for (int v = 0; v < noisy.vertexCount(); ++v) {
+    std::vector<Vec3> moved = input;
+    moved[v] += sigma * n[v];
+    const std::vector<Vec3> column = taubin(work, moved, 8);
+    for (int u = 0; u < noisy.vertexCount(); ++u) exact += std::pow((column[u] - x[u]).dot(n[u]) / sigma, 2);
+  }
+  INFO("probe " << sums.gain << ", exact " << exact << ", divergence " << sums.div << " over " << noisy.vertexCount()
+                << " vertices");
+  REQUIRE(exact > 0);
+  REQUIRE(exact < sums.div);  // a smoother's JᵀJ has a smaller trace than J
+  REQUIRE(sums.gain == Approx(exact).epsilon(0.15));
+}
+
+TEST_CASE("risk estimate: a linear candidate implies the noise's variance, the general bound lies above it",
+          "[denoise][risk][noise]") {
+  // On a sphere smoothing takes next to nothing from the shape, so Σ e² is the noise it removes:
+  // σ² (m − 2 tr J + tr JᵀJ) in expectation (docs/denoising.md#the-noise-level).
+  for (std::uint64_t seed : {2, 13}) {
+    NoisySphere s(seed);
+    auto& [noisy, input, sigma, work] = s;
+    const RiskEstimate risk(work, input, sigma, 1, RiskOptions{});
+    // The noise's realized variance along N, which the estimates aim at.
+    const Mesh clean = buildMesh(shapes::icosphere(3)).mesh;
+    double variance = 0;
+    for (int v = 0; v < noisy.vertexCount(); ++v)
+      variance += std::pow((input[v] - clean.position(v)).dot(risk.normals()[v]), 2) / noisy.vertexCount();
+    for (int steps : {8, 15}) {
+      const std::vector<Vec3> x = taubin(work, input, steps);
+      const RiskSums sums = risk.sums(x, taubin(work, risk.probedInput(), steps));
+      const double linear = risk.linearImpliedVariance(sums), general = risk.impliedVariance(sums);
+      INFO("seed " << seed << ", " << steps << " steps: realized " << variance << ", linear " << linear << ", general "
+                   << general);
+      REQUIRE(linear == Approx(variance).epsilon(0.12));
+      REQUIRE(general > 1.1 * linear);
+    }
+  }
+}

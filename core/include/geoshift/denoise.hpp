@@ -114,6 +114,12 @@ struct DenoiseOptions {
   // refined from the candidates (the least variance a good one implies) and they are ranked again
   // (docs/denoising.md#the-noise-level).
   bool refineNoise = true;
+  // In that refinement, where the Taubin-alone candidates' tighter bound (linear smoothing: the noise
+  // it removes is known from its derivative) puts the noise level below detailBoundRatio × the
+  // general bound's, the estimate has read the mesh's detail as noise and the tighter bound is
+  // used; closer than that, a slightly high level smooths the normals more, which pays
+  // (docs/denoising.md#the-noise-level). 0: never.
+  double detailBoundRatio = 0.9;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the
