@@ -25,6 +25,18 @@ std::vector<Vec3> taubin(Mesh& work, const std::vector<Vec3>& start, int steps) 
   return work.positions();
 }
 
+// Column v of the Jacobian J of `steps` Taubin steps along N: each vertex's response to input vertex
+// v moved by sigma along its N, over sigma (Taubin is linear, so any step will do).
+std::vector<double> jacobianColumn(Mesh& work, const std::vector<Vec3>& input, const std::vector<Vec3>& x,
+                                   const std::vector<Vec3>& n, double sigma, int steps, int v) {
+  std::vector<Vec3> moved = input;
+  moved[v] += sigma * n[v];
+  const std::vector<Vec3> out = taubin(work, moved, steps);
+  std::vector<double> column(out.size());
+  for (size_t u = 0; u < out.size(); ++u) column[u] = (out[u] - x[u]).dot(n[u]) / sigma;
+  return column;
+}
+
 // An icosphere with Gaussian noise of 0.3 AEL along its normals, and a mesh to compute on.
 struct NoisySphere {
   explicit NoisySphere(std::uint64_t seed)
@@ -49,13 +61,9 @@ TEST_CASE("risk estimate: the probe's divergence of Taubin smoothing matches its
     const std::vector<Vec3>& n = risk.normals();
     const std::vector<Vec3> x = taubin(work, input, 3);
     const RiskSums sums = risk.sums(x, taubin(work, risk.probedInput(), 3));
-    // Exact trace: move one vertex along its N at a time (Taubin is linear, so any step will do).
+    // Exact trace: the diagonal of J, one column at a time.
     double trace = 0;
-    for (int v = 0; v < noisy.vertexCount(); ++v) {
-      std::vector<Vec3> moved = input;
-      moved[v] += sigma * n[v];
-      trace += (taubin(work, moved, 3)[v] - x[v]).dot(n[v]) / sigma;
-    }
+    for (int v = 0; v < noisy.vertexCount(); ++v) trace += jacobianColumn(work, input, x, n, sigma, 3, v)[v];
     INFO("bounded " << bounded << ": probe " << sums.div << ", exact trace " << trace << " over "
                     << noisy.vertexCount() << " vertices");
     // Each vertex's own derivative lies in (0, 1): Taubin is a smoother.
@@ -130,14 +138,10 @@ TEST_CASE("risk estimate: the probe's gain of Taubin smoothing matches its exact
   const std::vector<Vec3>& n = risk.normals();
   const std::vector<Vec3> x = taubin(work, input, 8);
   const RiskSums sums = risk.sums(x, taubin(work, risk.probedInput(), 8));
-  // Exact: the squared length of every column of J (one vertex moved along its N at a time).
+  // Exact: the squared length of every column of J.
   double exact = 0;
-  for (int v = 0; v < noisy.vertexCount(); ++v) {
-    std::vector<Vec3> moved = input;
-    moved[v] += sigma * n[v];
-    const std::vector<Vec3> column = taubin(work, moved, 8);
-    for (int u = 0; u < noisy.vertexCount(); ++u) exact += std::pow((column[u] - x[u]).dot(n[u]) / sigma, 2);
-  }
+  for (int v = 0; v < noisy.vertexCount(); ++v)
+    for (double r : jacobianColumn(work, input, x, n, sigma, 8, v)) exact += r * r;
   INFO("probe " << sums.gain << ", exact " << exact << ", divergence " << sums.div << " over " << noisy.vertexCount()
                 << " vertices");
   REQUIRE(exact > 0);
