@@ -129,6 +129,14 @@ class DenoiseOptions:
     patience: int
     fixed_passes: int
     vertex_iterations: int
+    risk_normal_smoothing: int
+    probe_spacing: int
+    bounded_divergence: bool
+    tie_probes: int
+    tie_margin: float
+    refine_noise: bool
+    detail_bound_ratio: float
+    halving_race: bool
     impulse_kurtosis: float
     impulse_shrink: float
     seed: int
@@ -144,6 +152,9 @@ class DenoiseOptions:
                  taubin_only_steps: Sequence[int] = (5, 8, 12, 18, 27, 40, 60, 90),
                  candidate_taubin: Union[TaubinOptions, dict, None] = None, taubin_only_margin: float = 0.005,
                  max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
+                 risk_normal_smoothing: int = 20, probe_spacing: int = 5, bounded_divergence: bool = True,
+                 tie_probes: int = 4, tie_margin: float = 0.01, refine_noise: bool = True,
+                 detail_bound_ratio: float = 0.9, halving_race: bool = True,
                  impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
                  levels: int = 0, alpha: Sequence[float] = (0.0,),

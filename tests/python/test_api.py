@@ -231,3 +231,22 @@ def test_denoise_reports_a_taubin_only_winner(terrain):
     assert on.stats["taubin_only"] is True and on.stats["passes"] == 0
     assert on.stats["presmoothing_steps"] in geoshift.DenoiseOptions().taubin_only_steps
     assert off.stats["taubin_only"] is False
+
+
+def test_denoise_takes_the_risk_estimate_options(terrain):
+    """The risk estimate's settings reach the denoiser: out-of-range values are refused with the
+    core's message, and the noise level without its refinement is the race's upper estimate, at
+    least the refined one."""
+    p, f = terrain.positions, terrain.faces
+    ael = np.mean(np.linalg.norm(p[f[:, [1, 2, 0]]] - p[f], axis=2))
+    noisy = terrain.copy()
+    noisy.positions = p + np.random.default_rng(9).normal(0, 0.3 * ael, p.shape)
+    with pytest.raises(ValueError, match="detail bound ratio must be within"):
+        geoshift.denoise(noisy, detail_bound_ratio=1.5)
+    with pytest.raises(ValueError, match="tie probes must be in"):
+        geoshift.denoise(noisy, tie_probes=-1)
+    with pytest.raises(ValueError, match="probe spacing must be in"):
+        geoshift.denoise(noisy, probe_spacing=0)
+    refined = geoshift.denoise(noisy)
+    raw = geoshift.denoise(noisy, refine_noise=False)
+    assert raw.stats["noise_level"] >= refined.stats["noise_level"] > 0
