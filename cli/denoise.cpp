@@ -56,7 +56,9 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
       line << ", a tie between starts settled by " << r.tieProbes << " more probe" << (r.tieProbes > 1 ? "s" : "");
     line << ")";
     // docs/denoising.md#impulsive-noise
-    if (r.impulseGarrote) line << "; the noise looks impulsive: outliers corrected, the other vertices mostly kept";
+    if (r.impulseGarrote)
+      line << (o.impulseKurtosis > 0 ? "; the noise looks impulsive: outliers" : "; outliers (--impulse on)")
+           << " corrected, the other vertices mostly kept";
   }
   line << ", " << r.threads << " threads";
   std::cerr << line.str() << "\n";

@@ -119,6 +119,7 @@ val listPresets() {
   denoise.set("signal", std::string("normal"));
   for (const char* name : {"strength", "noise", "passes", "radius", "hs", "vertexIterations", "levels", "alpha"})
     denoise.set(name, defaults.number(name));
+  denoise.set("impulse", defaults.text("impulse"));
   // Several candidate h_r by default: the app shows 0 (Auto), which the op reads as those.
   const std::vector<double> hr = defaults.numbers("hr");
   denoise.set("hr", hr.size() == 1 ? hr.front() : 0.0);

@@ -54,8 +54,8 @@ void validate(const DenoiseOptions& o) {
   if (!(o.tieMargin >= 0) || !std::isfinite(o.tieMargin))
     bad("tie margin must be >= 0 (got " + std::to_string(o.tieMargin) + ")");
   if (o.probeSpacing < 1 || o.probeSpacing > 100) bad("probe spacing must be in [1, 100] edges (got " + std::to_string(o.probeSpacing) + ")");
-  if (!(o.impulseKurtosis > 0) || !std::isfinite(o.impulseKurtosis))
-    bad("impulse kurtosis must be > 0 (got " + std::to_string(o.impulseKurtosis) + ")");
+  if (!(o.impulseKurtosis >= 0) || !std::isfinite(o.impulseKurtosis))
+    bad("impulse kurtosis must be >= 0 (0: always; got " + std::to_string(o.impulseKurtosis) + ")");
   if (!(o.impulseShrink >= 0) || !std::isfinite(o.impulseShrink))
     bad("impulse shrink must be >= 0 (0: never; got " + std::to_string(o.impulseShrink) + ")");
 }

@@ -52,6 +52,18 @@ void applyDefault(const ParamRequest& r, DenoiseOptions& o) {
     o.presmoothing.clear();
     for (double k : r.numbers("presmoothing")) o.presmoothing.push_back(static_cast<int>(k));
   }
+  if (r.has("taubinOnly")) {
+    // 0 (alone): no Taubin-only candidate; a 0 among others is refused by the denoiser.
+    const std::vector<double> steps = r.numbers("taubinOnly");
+    o.taubinOnlySteps.clear();
+    if (steps != std::vector<double>{0.0})
+      for (double k : steps) o.taubinOnlySteps.push_back(static_cast<int>(k));
+  }
+  if (r.has("impulse")) {
+    const std::string rule = r.text("impulse");
+    if (rule == "off") o.impulseShrink = 0;
+    if (rule == "on") o.impulseKurtosis = 0;
+  }
   if (r.has("maxPasses")) o.maxPasses = r.integer("maxPasses");
   if (r.has("patience")) o.patience = r.integer("patience");
   if (r.has("seed")) o.seed = static_cast<std::uint64_t>(r.integer64("seed"));

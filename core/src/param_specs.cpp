@@ -210,6 +210,13 @@ OpParamSpecs denoiseSpecs() {
                   .inCase(paperPreset, static_cast<double>(paper.passes), 1, 10000),
               P("presmoothing", T::Integer, "candidate Taubin step counts before the passes; SURE picks one")
                   .list().byDefault(numbers(d.presmoothing)).range(0, 10000).appliesWhen(ours),
+              P("taubinOnly", T::Integer,
+                "Taubin step counts (mu -0.502) scored as candidates of their own, without passes; 0: none")
+                  .list().byDefault(numbers(d.taubinOnlySteps)).range(0, 10000).appliesWhen(ours),
+              P("impulse", T::Enum,
+                "outliers of impulsive noise: auto: corrected when the result's displacements say the noise moved "
+                "few vertices far; on: always corrected, the other vertices mostly kept; off: never")
+                  .choices({"auto", "on", "off"}).byDefault(std::string("auto")).appliesWhen(ours),
               P("maxPasses", T::Integer, "most passes SURE considers")
                   .byDefault(static_cast<double>(d.maxPasses)).range(1, 10000).appliesWhen(ours),
               P("patience", T::Integer, "stop a candidate after this many passes without a lower risk")

@@ -275,6 +275,20 @@ export interface DenoiseOptions {
    */
   presmoothing?: number | number[];
   /**
+   * Taubin step counts (mu -0.502) scored as candidates of their own, without passes; 0: none.
+   *
+   * Default: `[5, 8, 12, 18, 27, 40, 60, 90]`. A whole number ≥ 0 and ≤ 10000 (each value). Applies
+   * only where method is 'meanshift' and preset is 'default'.
+   */
+  taubinOnly?: number | number[];
+  /**
+   * Outliers of impulsive noise: auto: corrected when the result's displacements say the noise
+   * moved few vertices far; on: always corrected, the other vertices mostly kept; off: never.
+   *
+   * Default: `'auto'`. Applies only where method is 'meanshift' and preset is 'default'.
+   */
+  impulse?: 'auto' | 'on' | 'off';
+  /**
    * Most passes SURE considers.
    *
    * Default: `40`. A whole number ≥ 1 and ≤ 10000. Applies only where method is 'meanshift' and

@@ -80,6 +80,8 @@ export interface DenoiseDefaults {
   radius: number;
   hs: number;
   vertexIterations: number;
+  /** How outliers of impulsive noise are treated (docs/denoising.md#impulsive-noise). */
+  impulse: 'auto' | 'on' | 'off';
   levels: number;
   alpha: number;
 }

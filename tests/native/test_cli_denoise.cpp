@@ -47,6 +47,14 @@ TEST_CASE("cli: denoise says when the noise looks impulsive", "[cli][denoise]") 
   r = geoshiftCli("denoise " + q(dir / "gauss.off") + " -o " + q(dir / "out2.off"));
   REQUIRE(r.code == 0);
   CHECK_THAT(r.err, !Catch::Contains(said));
+  // --impulse on corrects outliers there too and says it was asked; --impulse off never corrects.
+  r = geoshiftCli("denoise " + q(dir / "gauss.off") + " -o " + q(dir / "out3.off") + " --impulse on");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("; outliers (--impulse on) corrected, the other vertices mostly kept"));
+  r = geoshiftCli("denoise " + q(dir / "spikes.off") + " -o " + q(dir / "out4.off") + " --impulse off");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, !Catch::Contains("outliers"));
+  CHECK(rmsToClean(dir / "out4.off", dir / "clean.off") > rmsToClean(dir / "out.off", dir / "clean.off"));
 }
 
 TEST_CASE("cli: denoise removes noise with every method and says what it did", "[cli][denoise]") {

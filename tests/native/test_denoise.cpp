@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "geoshift/denoise.hpp"
+#include "geoshift/denoise_request.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
 #include "geoshift/metrics.hpp"
@@ -107,6 +108,20 @@ TEST_CASE("impulsive noise is recognised and the untouched vertices mostly stay"
   INFO("Gaussian: kurtosis " << rg.displacementKurtosis);
   REQUIRE_FALSE(rg.impulseGarrote);
   REQUIRE(rg.displacementKurtosis < 6);
+
+  // Asked for (the request's impulse "on": a trigger of 0), the correction runs under Gaussian noise
+  // too, and there it is worse than none: every vertex carries noise, so keeping inputs keeps noise.
+  // "off" keeps it from the impulsive sphere. The same winners: only the correction differs.
+  Mesh forced = withNoise(clean, 0.3, 6, NoiseDistribution::Gaussian);
+  const DenoiseResult rf = denoise(forced, denoiseSettings(ParamValues{{"impulse", std::string("on")}}).meanShift);
+  INFO("Gaussian, forced: RMS " << rmsTo(forced, clean) << " against " << rmsTo(gaussian, clean));
+  REQUIRE(rf.impulseGarrote);
+  REQUIRE(rf.passes == rg.passes);
+  REQUIRE(rmsTo(forced, clean) > rmsTo(gaussian, clean));
+  Mesh refused = impulsive;
+  const DenoiseResult rr = denoise(refused, denoiseSettings(ParamValues{{"impulse", std::string("off")}}).meanShift);
+  REQUIRE_FALSE(rr.impulseGarrote);
+  REQUIRE(refused.positions() == without.positions());
 }
 
 // SURE is an unbiased estimate of the error: the pass count it picks must be close to the best one
@@ -293,6 +308,15 @@ TEST_CASE("a Taubin-only candidate wins where passes cannot smooth enough, and i
   const DenoiseResult rk = denoise(kept, o);
   REQUIRE_FALSE(rk.taubinOnly);
   REQUIRE(rk.presmoothingSteps == 0);
+
+  // None offered (the request's taubinOnly 0): a candidate with passes wins, by the request's path.
+  Mesh none = noisy;
+  const DenoiseOptions n =
+      denoiseSettings(ParamValues{{"taubinOnly", 0.0}, {"presmoothing", 0.0}, {"maxPasses", 1.0}}).meanShift;
+  const DenoiseResult rn = denoise(none, n);
+  REQUIRE_FALSE(rn.taubinOnly);
+  REQUIRE(rn.presmoothingSteps == 0);
+  REQUIRE(rmsTo(none, clean) > rmsTo(m, clean));
 }
 
 TEST_CASE("denoising a clean plane leaves it planar", "[denoise]") {

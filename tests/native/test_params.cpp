@@ -164,6 +164,26 @@ TEST_CASE("a denoise request becomes the options of its method, with the options
                     Catch::Contains("hr must be > 0"));
   CHECK_THROWS_WITH(denoiseSettings(ParamValues{{"preset", std::string("paper")}, {"hr", std::vector<double>{0.3, 0.4}}}),
                     Catch::Contains("takes one value"));
+  // taubinOnly 0 (alone) offers none; a list is taken as given (a 0 among others is the denoiser's
+  // to refuse); impulse on/off force the outlier correction or turn it off, auto keeps the trigger.
+  CHECK(defaults.numbers("taubinOnly") == std::vector<double>(d.taubinOnlySteps.begin(), d.taubinOnlySteps.end()));
+  CHECK(none.meanShift.taubinOnlySteps == d.taubinOnlySteps);
+  CHECK(denoiseSettings(ParamValues{{"taubinOnly", 0.0}}).meanShift.taubinOnlySteps.empty());
+  CHECK(denoiseSettings(ParamValues{{"taubinOnly", std::vector<double>{10, 30}}}).meanShift.taubinOnlySteps ==
+        std::vector<int>{10, 30});
+  CHECK(denoiseSettings(ParamValues{{"taubinOnly", std::vector<double>{0, 5}}}).meanShift.taubinOnlySteps ==
+        std::vector<int>{0, 5});
+  CHECK(defaults.text("impulse") == "auto");
+  for (const char* rule : {"auto", "on", "off"}) {
+    const DenoiseOptions i = denoiseSettings(ParamValues{{"impulse", std::string(rule)}}).meanShift;
+    INFO(rule);
+    CHECK(i.impulseShrink == (std::string(rule) == "off" ? 0.0 : d.impulseShrink));
+    CHECK(i.impulseKurtosis == (std::string(rule) == "on" ? 0.0 : d.impulseKurtosis));
+  }
+  CHECK_THAT(refusal("denoise", {{"impulse", std::string("always")}}),
+             Equals("denoise: parameter impulse = \"always\" is not one of auto, on, off"));
+  CHECK_THAT(refusal("denoise", {{"preset", std::string("paper")}, {"impulse", std::string("off")}}),
+             Contains("impulse"));
   const ParamRequest paper(paramSpecsOf("denoise"), {{"preset", std::string("paper")}});
   CHECK(paper.number("hs") == d.paper.meanShift.spatialBandwidth);
   CHECK(paper.integer("passes") == d.paper.passes);

@@ -98,10 +98,25 @@ test('presets() gives the default denoiser\'s settings: sent as parameters they 
   assert.equal(params.noise, 0);   // measured on the mesh
   assert.equal(params.passes, 0);  // chosen by SURE
   assert.equal(params.hr, 0);      // the default candidates, SURE picks one
+  assert.equal(params.impulse, 'auto');  // outliers corrected when the result says the noise is impulsive
   const off = path.join(dir, 'box.off');
   writeCoff(off, noisy);
   const r = denoised(geoshift, params);
   assertClose(assert, r.positions, runNative(dir, 'denoise', off, [])('POSITION'), 'positions');
+});
+
+test('impulse "on" corrects outliers under dense noise as `geoshift denoise --impulse on` does; "off" never', () => {
+  const off = path.join(dir, 'box-impulse.off');
+  writeCoff(off, noisy);
+  const auto = denoised(geoshift, {});
+  const on = denoised(geoshift, { impulse: 'on' });
+  const never = denoised(geoshift, { impulse: 'off' });
+  assert.equal(auto.stats.impulseGarrote, 'no');  // noise on every vertex: not impulsive
+  assert.equal(on.stats.impulseGarrote, 'yes');
+  assert.equal(never.stats.impulseGarrote, 'no');
+  assert.ok(sameBits(never.positions, auto.positions), 'off differs from auto where auto does not fire');
+  assert.ok(!sameBits(on.positions, auto.positions), 'on changed nothing');
+  assertClose(assert, on.positions, runNative(dir, 'denoise', off, ['--impulse', 'on'])('POSITION'), 'positions');
 });
 
 test('bad denoise parameters are refused, naming what is wrong', () => {
@@ -125,6 +140,8 @@ test('bad denoise parameters are refused, naming what is wrong', () => {
   expectError({ radius: 'far' }, /radius must be a number/);
   expectError({ method: 'taubin', lambda: 0.5, mu: -0.4 }, /mu|lambda/);
   expectError({ sigma: 1 }, /unknown parameter "sigma"/);
+  expectError({ impulse: 'sometimes' }, /parameter impulse = "sometimes" is not one of auto, on, off/);
+  expectError({ taubinOnly: [8, 5] }, /Taubin-only step counts must ascend/);
   // Nothing moved: a Taubin run with no iterations hands back the loaded positions.
   const r = geoshift.run(handle, 'denoise', { method: 'taubin', iterations: 0 });
   assert.equal(r.ok, true, r.error);

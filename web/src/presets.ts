@@ -89,6 +89,12 @@ const rangeUpdate = (): ChoiceParam => ({
   options: { Joint: 'joint', 'Sampled (paper)': 'sampled' },
   tooltip: 'How a point\'s value follows it. Joint: it takes its own mean shift step (moves with the point; smooths evenly sampled signals better). Sampled: it is read from the surface where the point is (the paper).',
 });
+// The denoiser's treatment of outliers (docs/denoising.md#impulsive-noise); the module gives the default.
+const impulse = (): ChoiceParam => ({
+  key: 'impulse', kind: 'choice', label: 'Outliers', value: '',
+  options: { Auto: 'auto', 'Always fix': 'on', 'Never fix': 'off' },
+  tooltip: 'Spikes where a few scan points landed far off. Auto fixes them when the result shows few points moved far, keeping the other points where they were; Always fixes them in any case; Never smooths every point alike.',
+});
 const segments: FlagParam = {
   key: 'segments', kind: 'flag', label: 'Also find segments', value: false,
   tooltip: 'Label vertices that end at the same mode with one number, and show the labels as segments.',
@@ -114,6 +120,7 @@ export const PRESETS: Preset[] = [
       expert(num('radius', 'Neighbourhood radius r', AEL, CORE, 0.5, 10, 0.05, 'How far around each face the normals are averaged.')),
       expert(num('hs', 'Spatial bandwidth h_s', AEL, CORE, 0.1, 5, 0.05, 'How quickly the influence of a neighbouring face fades with its distance.')),
       expert(num('vertexIterations', 'Vertex update steps', '', CORE, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.')),
+      expert(impulse()),
       expert(levels(CORE)), expert(alpha(CORE)),
     ],
   },

@@ -129,7 +129,8 @@ struct DenoiseOptions {
   // neighbour trusted by 1 − w: the outliers are corrected, the vertices the noise left alone stay
   // where they are (docs/denoising.md#impulsive-noise). τ = impulseShrink × 1.4826 median |d|, the
   // displacements' robust spread (what the winner did to the vertices the noise did not touch).
-  // impulseShrink 0: never.
+  // impulseShrink 0: never; impulseKurtosis 0: whenever the winner moved anything (a kurtosis is at
+  // least 1).
   double impulseKurtosis = 6;
   double impulseShrink = 2;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
