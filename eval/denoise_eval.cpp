@@ -168,12 +168,12 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, detailBoundRatio, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin,
+  std::optional<double> strength, detailBoundRatio, levelLean, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes;
-  std::optional<bool> refineNoise, halving, boundedDivergence;
+  std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
   std::vector<int> presmoothing;
@@ -182,6 +182,8 @@ struct WhatIf {
   void apply(DenoiseOptions& o) const {
     if (strength) o.strength = *strength;
     if (detailBoundRatio) o.detailBoundRatio = *detailBoundRatio;
+    if (levelLean) o.levelLean = *levelLean;
+    if (highFrequencyLevel) o.highFrequencyLevel = *highFrequencyLevel;
     if (impulseShrink) o.impulseShrink = *impulseShrink;
     if (impulseKurtosis) o.impulseKurtosis = *impulseKurtosis;
     if (taubinOnlySteps) o.taubinOnlySteps = *taubinOnlySteps;
@@ -517,12 +519,13 @@ int usage(const char* error) {
          "  --paper            also the paper preset\n"
          "  --split            print the families of each set and exit\n"
          "  --oracles-only     only fill the oracles' cache (no denoiser, no report)\n"
-         "  --noise-estimate   only the estimated against the true noise level of each case\n"
+         "  --noise-estimate   only the estimated against the true noise level of each case (est: the quadric\n"
+         "                     estimate; high: highFrequencyNoiseLevel, what the default ranks with)\n"
          "  --strength, --detail-bound-ratio, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations,\n"
          "  --radius, --hs, --patience, --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off,\n"
          "  --halving on|off, --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
-         "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu)\n"
+         "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
@@ -571,6 +574,8 @@ int main(int argc, char** argv) {
       else if (a == "--jobs") jobs = std::max(1, std::stoi(value()));
       else if (a == "--strength") whatIf.strength = std::stod(value());
       else if (a == "--detail-bound-ratio") whatIf.detailBoundRatio = std::stod(value());
+      else if (a == "--level-lean") whatIf.levelLean = std::stod(value());
+      else if (a == "--high-frequency-level") whatIf.highFrequencyLevel = value() != "off";
       else if (a == "--impulse-shrink") whatIf.impulseShrink = std::stod(value());
       else if (a == "--impulse-kurtosis") whatIf.impulseKurtosis = std::stod(value());
       else if (a == "--taubin-only") {
@@ -705,8 +710,11 @@ int main(int argc, char** argv) {
           double k1, k2, k3;
           const double a = level(0, nullptr), b = level(0.1, &k1), d = level(0.2, &k2), e = level(0.4, &k3);
           std::lock_guard lock(log);
-          std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f)\n",
-                      c.mesh.c_str(), c.noise.c_str(), trueNoiseLevel(c), estimateNoise(c.noisy).level, a, b, k1, d, k2, e, k3);
+          ParallelOptions one;
+          one.threads = 1;
+          std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | high %.3f | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f)\n",
+                      c.mesh.c_str(), c.noise.c_str(), trueNoiseLevel(c), estimateNoise(c.noisy).level,
+                      highFrequencyNoiseLevel(c.noisy, one), a, b, k1, d, k2, e, k3);
           continue;
         }
         Result& r = results[t];

@@ -28,6 +28,7 @@ void validate(const DenoiseOptions& o) {
   if (!(o.strength > 0) || !std::isfinite(o.strength)) bad("strength must be > 0 (got " + std::to_string(o.strength) + ")");
   if (!(o.detailBoundRatio >= 0 && o.detailBoundRatio <= 1))
     bad("detail bound ratio must be within [0, 1] (got " + std::to_string(o.detailBoundRatio) + ")");
+  if (!(o.levelLean > 0 && o.levelLean <= 10)) bad("level lean must be within (0, 10] (got " + std::to_string(o.levelLean) + ")");
   if (o.rangeBandwidths.empty()) bad("range bandwidths need at least one candidate h_r");
   for (double hr : o.rangeBandwidths)
     if (!(hr > 0) || !std::isfinite(hr)) bad("range bandwidth h_r must be > 0 (got " + std::to_string(hr) + ")");
@@ -438,10 +439,19 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   const double ael = averageEdgeLength(mesh);
   double level = o.noiseLevel;
   NoiseEstimate estimate;
+  // The level the candidates are finally ranked with (docs/denoising.md#the-noise-level): read
+  // from the input's highest frequencies before the passes move it. 0: not used, or no vertex far
+  // enough from a crease or a boundary.
+  double highLevel = 0;
   if (level == 0) {
     estimate = estimateNoise(mesh);
     level = estimate.level;
     result.noiseEstimated = true;
+    if (o.refineNoise && o.highFrequencyLevel) {
+      ParallelOptions par;
+      par.threads = o.threads;
+      highLevel = highFrequencyNoiseLevel(mesh, par);
+    }
   }
   level *= o.strength;
   result.noiseLevel = level;
@@ -532,17 +542,24 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   double finalSigma = raceSigma;
   rank.sigma = finalSigma;
   if (o.refineNoise && result.noiseEstimated) {
-    double implied = raceSigma * raceSigma, linearImplied = implied;
-    for (const auto& c : scored) {
-      const double v = risk.impliedVariance(c.sums);
-      if (v > 0) implied = std::min(implied, v);
-      const double w = c.passes == 0 ? risk.linearImpliedVariance(c.sums) : 0.0;
-      if (w > 0) linearImplied = std::min(linearImplied, w);
+    if (highLevel > 0) {
+      // The level from the top of the spectrum, ranked with the lean (a level a little high smooths
+      // the normals a little more, which pays).
+      finalSigma = highLevel * ael;
+      rank.sigma = o.levelLean * finalSigma;
+    } else {
+      double implied = raceSigma * raceSigma, linearImplied = implied;
+      for (const auto& c : scored) {
+        const double v = risk.impliedVariance(c.sums);
+        if (v > 0) implied = std::min(implied, v);
+        const double w = c.passes == 0 ? risk.linearImpliedVariance(c.sums) : 0.0;
+        if (w > 0) linearImplied = std::min(linearImplied, w);
+      }
+      const double ratio = o.detailBoundRatio;
+      if (linearImplied < ratio * ratio * implied) implied = linearImplied;
+      finalSigma = std::clamp(std::sqrt(implied), 0.5 * lowSigma, raceSigma);
+      rank.sigma = finalSigma;
     }
-    const double ratio = o.detailBoundRatio;
-    if (linearImplied < ratio * ratio * implied) implied = linearImplied;
-    finalSigma = std::clamp(std::sqrt(implied), 0.5 * lowSigma, raceSigma);
-    rank.sigma = finalSigma;
     for (size_t i = 0; i < scored.size(); ++i)
       if (rank(scored[i].sums) < rank(scored[chosen].sums)) chosen = i;
   }

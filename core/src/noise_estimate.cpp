@@ -1,12 +1,16 @@
 // estimateNoise (noise.hpp; docs/denoising.md#noise-estimate).
 #include <algorithm>
 #include <cmath>
+#include <random>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "geoshift/geometry.hpp"
 #include "geoshift/noise.hpp"
+#include "geoshift/parallel.hpp"
+#include "geoshift/smoothing.hpp"
 
 namespace geoshift {
 
@@ -123,6 +127,93 @@ NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples) {
   out.upperLevel = std::sqrt(total / variances.size()) / ael;
   out.samples = static_cast<int>(variances.size());
   return out;
+}
+
+}  // namespace geoshift
+
+namespace geoshift {
+
+double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel) {
+  // docs/denoising.md#noise-estimate. Two applications of the uniform Laplacian L (each vertex less
+  // the mean of its neighbours) take a smooth surface, curvature included, to about zero and keep
+  // the noise's top frequencies; along the normals n of a smoothed copy, (L²y)·n over the vertices
+  // away from creases and boundaries, against Σ (L²b)² for white noise b of unit variance, is the
+  // noise variance along the normals.
+  constexpr int kPower = 2, kProbes = 8, kSupportSteps = 10;
+  constexpr double kCreaseDegrees = 30;
+  const int nv = mesh.vertexCount();
+  if (nv == 0 || mesh.faceCount() == 0) return 0;
+  Mesh support = mesh;
+  TaubinOptions taubin;
+  taubin.iterations = kSupportSteps;
+  taubin.parallel = parallel;
+  taubinSmooth(support, taubin);
+  const std::vector<Vec3> normal = vertexNormals(support);
+
+  // Neighbours, flattened (the order of Mesh::neighbors).
+  std::vector<int> first(nv + 1, 0), adjacent;
+  adjacent.reserve(static_cast<size_t>(mesh.halfedgeCount()) + nv);
+  for (int v = 0; v < nv; ++v) {
+    for (int w : mesh.neighbors(v)) adjacent.push_back(w);
+    first[v + 1] = static_cast<int>(adjacent.size());
+  }
+
+  // Left out: within kPower + 1 rings of a boundary, an isolated vertex or a crease of the copy.
+  std::vector<char> out(nv, 0);
+  {
+    const std::vector<Vec3> faceNormal = faceNormals(support);
+    const double creaseCos = std::cos(kCreaseDegrees * 3.14159265358979323846 / 180);
+    for (int v = 0; v < nv; ++v) out[v] = mesh.isIsolated(v);
+    for (int h = 0; h < mesh.halfedgeCount(); ++h) {
+      const int o = mesh.twin(h);
+      if (o < 0 || faceNormal[Mesh::faceOf(h)].dot(faceNormal[Mesh::faceOf(o)]) < creaseCos)
+        out[mesh.tail(h)] = out[mesh.head(h)] = 1;
+    }
+    for (int ring = 0; ring <= kPower; ++ring) {
+      std::vector<char> grown = out;
+      for (int v = 0; v < nv; ++v)
+        if (out[v])
+          for (int i = first[v]; i < first[v + 1]; ++i) grown[adjacent[i]] = 1;
+      out.swap(grown);
+    }
+  }
+
+  const Progress quiet;
+  auto laplacian = [&](const auto& x) {
+    std::remove_cvref_t<decltype(x)> y(x.size());
+    parallelFor(nv, parallel, quiet, "", 0, 1, [&](int v, int) {
+      const int n = first[v + 1] - first[v];
+      if (n == 0) {
+        y[v] = x[v] - x[v];
+        return;
+      }
+      auto sum = x[adjacent[first[v]]];
+      for (int i = first[v] + 1; i < first[v + 1]; ++i) sum = sum + x[adjacent[i]];
+      y[v] = x[v] - sum * (1.0 / n);
+    });
+    return y;
+  };
+
+  std::vector<Vec3> high = mesh.positions();
+  for (int k = 0; k < kPower; ++k) high = laplacian(high);
+  // Σ over probes of (L²b)² per vertex: the operator's response to white noise there.
+  std::vector<double> response(nv, 0.0);
+  std::mt19937_64 random(0x6e6f697365ull);
+  for (int p = 0; p < kProbes; ++p) {
+    std::vector<double> b(nv);
+    for (double& e : b) e = (random() >> 63) ? 1.0 : -1.0;
+    for (int k = 0; k < kPower; ++k) b = laplacian(b);
+    for (int v = 0; v < nv; ++v) response[v] += b[v] * b[v];
+  }
+  double measured = 0, expected = 0;
+  for (int v = 0; v < nv; ++v) {
+    if (out[v] || normal[v].squaredNorm() == 0) continue;
+    const double d = high[v].dot(normal[v]);
+    measured += d * d;
+    expected += response[v] / kProbes;
+  }
+  if (!(expected > 0)) return 0;
+  return std::sqrt(measured / expected) / averageEdgeLength(mesh);
 }
 
 }  // namespace geoshift

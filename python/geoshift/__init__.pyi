@@ -136,6 +136,8 @@ class DenoiseOptions:
     tie_margin: float
     refine_noise: bool
     detail_bound_ratio: float
+    high_frequency_level: bool
+    level_lean: float
     halving_race: bool
     impulse_kurtosis: float
     impulse_shrink: float
@@ -154,7 +156,8 @@ class DenoiseOptions:
                  max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
                  risk_normal_smoothing: int = 20, probe_spacing: int = 5, bounded_divergence: bool = True,
                  tie_probes: int = 4, tie_margin: float = 0.01, refine_noise: bool = True,
-                 detail_bound_ratio: float = 0.9, halving_race: bool = True,
+                 detail_bound_ratio: float = 0.9, high_frequency_level: bool = True, level_lean: float = 1.1,
+                 halving_race: bool = True,
                  impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
                  levels: int = 0, alpha: Sequence[float] = (0.0,),

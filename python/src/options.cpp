@@ -221,6 +221,8 @@ void bindOptions(py::module_& m) {
       .def_readwrite("tie_margin", &DenoiseOptions::tieMargin)
       .def_readwrite("refine_noise", &DenoiseOptions::refineNoise)
       .def_readwrite("detail_bound_ratio", &DenoiseOptions::detailBoundRatio)
+      .def_readwrite("high_frequency_level", &DenoiseOptions::highFrequencyLevel)
+      .def_readwrite("level_lean", &DenoiseOptions::levelLean)
       .def_readwrite("halving_race", &DenoiseOptions::halvingRace)
       .def_readwrite("impulse_kurtosis", &DenoiseOptions::impulseKurtosis)
       .def_readwrite("impulse_shrink", &DenoiseOptions::impulseShrink)

@@ -120,6 +120,15 @@ struct DenoiseOptions {
   // used; closer than that, a slightly high level smooths the normals more, which pays
   // (docs/denoising.md#the-noise-level). 0: never.
   double detailBoundRatio = 0.9;
+  // With refineNoise, the level the candidates are finally ranked with is instead read from the
+  // input's highest frequencies (highFrequencyNoiseLevel in noise.hpp: a plain mean away from creases,
+  // right for any distribution of the noise, where the quadric estimate's lower half reads
+  // fixed-magnitude noise high and detail as noise), times levelLean: a level a little high smooths
+  // the normals a little more, which pays. The reported level is the one read
+  // (docs/denoising.md#the-noise-level). false, or where no vertex is three rings from a crease or a
+  // boundary: the level refined from the candidates, as above.
+  bool highFrequencyLevel = true;
+  double levelLean = 1.1;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the

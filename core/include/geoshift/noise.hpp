@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geoshift/mesh.hpp"
+#include "geoshift/parallel.hpp"
 
 namespace geoshift {
 
@@ -52,6 +53,15 @@ struct NoiseEstimate {
 // Deterministic and independent of threads. Uses at most `maxSamples` vertices spread evenly over
 // the index range. A mesh with no usable vertex gives level 0 and samples 0.
 NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples = 40000);
+
+// The noise level read from the mesh's highest frequencies (docs/denoising.md#noise-estimate): the
+// uniform Laplacian applied twice to the positions, along the vertex normals of a copy smoothed by
+// 10 Taubin steps, against the same operator's response to white noise (measured with 8 seeded ±1
+// probes), over the vertices at least three rings from a crease (faces of that copy more than 30°
+// apart) or a boundary. A plain mean, so it holds for any distribution of the noise; detail leaks in
+// only as far as it reaches the top of the spectrum. In average edge lengths; 0 where every vertex is
+// near a crease or a boundary. Deterministic and independent of `parallel`'s threads.
+double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel = {});
 
 // Its parts: the sampled vertices (interior, not isolated, evenly spread over the index range), and
 // the residual variance of the quadric fitted to each one's two-ring (−1 where unusable).
