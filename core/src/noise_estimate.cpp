@@ -129,10 +129,6 @@ NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples) {
   return out;
 }
 
-}  // namespace geoshift
-
-namespace geoshift {
-
 double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel) {
   // docs/denoising.md#noise-estimate. Two applications of the uniform Laplacian L (each vertex less
   // the mean of its neighbours) take a smooth surface, curvature included, to about zero and keep
