@@ -168,7 +168,7 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, detailBoundRatio, levelLean, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin,
+  std::optional<double> strength, detailBoundRatio, levelLean, gradientRiskWeight, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
@@ -183,6 +183,7 @@ struct WhatIf {
     if (strength) o.strength = *strength;
     if (detailBoundRatio) o.detailBoundRatio = *detailBoundRatio;
     if (levelLean) o.levelLean = *levelLean;
+    if (gradientRiskWeight) o.gradientRiskWeight = *gradientRiskWeight;
     if (highFrequencyLevel) o.highFrequencyLevel = *highFrequencyLevel;
     if (impulseShrink) o.impulseShrink = *impulseShrink;
     if (impulseKurtosis) o.impulseKurtosis = *impulseKurtosis;
@@ -525,7 +526,8 @@ int usage(const char* error) {
          "  --radius, --hs, --patience, --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off,\n"
          "  --halving on|off, --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
-         "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean\n"
+         "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
+         "  --gradient-risk-weight\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
@@ -575,6 +577,7 @@ int main(int argc, char** argv) {
       else if (a == "--strength") whatIf.strength = std::stod(value());
       else if (a == "--detail-bound-ratio") whatIf.detailBoundRatio = std::stod(value());
       else if (a == "--level-lean") whatIf.levelLean = std::stod(value());
+      else if (a == "--gradient-risk-weight") whatIf.gradientRiskWeight = std::stod(value());
       else if (a == "--high-frequency-level") whatIf.highFrequencyLevel = value() != "off";
       else if (a == "--impulse-shrink") whatIf.impulseShrink = std::stod(value());
       else if (a == "--impulse-kurtosis") whatIf.impulseKurtosis = std::stod(value());

@@ -28,6 +28,8 @@ void validate(const DenoiseOptions& o) {
   if (!(o.strength > 0) || !std::isfinite(o.strength)) bad("strength must be > 0 (got " + std::to_string(o.strength) + ")");
   if (!(o.detailBoundRatio >= 0 && o.detailBoundRatio <= 1))
     bad("detail bound ratio must be within [0, 1] (got " + std::to_string(o.detailBoundRatio) + ")");
+  if (!(o.gradientRiskWeight >= 0 && o.gradientRiskWeight <= 10))
+    bad("gradient risk weight must be within [0, 10] (got " + std::to_string(o.gradientRiskWeight) + ")");
   if (!(o.levelLean > 0 && o.levelLean <= 10)) bad("level lean must be within (0, 10] (got " + std::to_string(o.levelLean) + ")");
   if (o.rangeBandwidths.empty()) bad("range bandwidths need at least one candidate h_r");
   for (double hr : o.rangeBandwidths)
@@ -183,7 +185,7 @@ struct Ranking {
   double sigma = 0;  // the noise level candidates are ranked with (before the strength)
   double operator()(const RiskSums& s) const {
     const double ranked = sigma * risk.strength();
-    return risk.at(s, sigma).position / (ranked * ranked);
+    return risk.at(s, sigma).ranked / (ranked * ranked);
   }
 };
 
@@ -503,6 +505,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   riskOptions.seed = o.seed;
   riskOptions.probeSpacing = o.probeSpacing;
   riskOptions.boundedDivergence = o.boundedDivergence;
+  riskOptions.gradientWeight = o.gradientRiskWeight;
   RiskEstimate risk(mesh, input, raceSigma, o.strength, riskOptions);
   std::vector<Vec3> probed = risk.probedInput();
   const VertexUpdateOptions probedUpdate = passes.updateFrom(probed);

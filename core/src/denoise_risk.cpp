@@ -8,6 +8,9 @@
 // derivative J_ii: a larger one is a jump, not a derivative (docs/denoising.md#the-risk-estimate).
 // The gain ‖(x' − x)·N / ε‖² estimates tr JᵀJ the same way, each vertex's term kept at most 1; for a
 // linear candidate it tightens the bound on σ² (docs/denoising.md#the-noise-level).
+// The error's differences across edges follow the same way with L the graph Laplacian (GᵀG for G the
+// edge differences): E‖G(x − x*)‖² = ‖G e‖² − σ² tr L + 2σ² tr(L J), tr(L J) from the probe as
+// bᵀ L (x' − x)·N / ε, each probed vertex's term kept within [0, its degree].
 #include "denoise_risk.hpp"
 
 #include <algorithm>
@@ -58,8 +61,8 @@ std::vector<char> spacedVertices(const Mesh& mesh, const std::vector<Vec3>& norm
 
 RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double sigma, double strength,
                            const RiskOptions& options)
-    : input_(input), sigma_(sigma), strength_(strength), eps_(0.01 * sigma * strength),
-      boundedDivergence_(options.boundedDivergence) {
+    : mesh_(work), input_(input), sigma_(sigma), strength_(strength), eps_(0.01 * sigma * strength),
+      boundedDivergence_(options.boundedDivergence), gradientWeight_(options.gradientWeight) {
   const int n = work.vertexCount();
   work.positions() = input;
   if (options.normalSmoothing > 0) {
@@ -68,6 +71,8 @@ RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double si
     taubinSmooth(work, taubin);
   }
   normals_ = vertexNormals(work);
+  for (int h = 0; h < work.halfedgeCount(); ++h)
+    if (countsEdge(h)) ++edges_;
   const std::vector<char> chosen = spacedVertices(work, normals_, options.probeSpacing);
   probe_.assign(n, 0);
   std::mt19937_64 rng(options.seed);
@@ -78,6 +83,7 @@ RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double si
     if (chosen[v]) {
       probe_[v] = sign;
       ++probed_;
+      for (int u : work.neighbors(v)) probedDegree_ += normals_[u].squaredNorm() > 0;
     }
   }
 }
@@ -97,26 +103,59 @@ std::vector<Vec3> RiskEstimate::probedInput() const {
   return out;
 }
 
+bool RiskEstimate::countsEdge(int h) const {
+  const int a = mesh_.tail(h), b = mesh_.head(h);
+  return (mesh_.twin(h) < 0 || a < b) && normals_[a].squaredNorm() > 0 && normals_[b].squaredNorm() > 0;
+}
+
 RiskSums RiskEstimate::sums(const std::vector<Vec3>& x, const std::vector<Vec3>& xp) const {
-  double fit = 0, div = 0, gain = 0;
+  double fit = 0, div = 0, gain = 0, edgeFit = 0, edgeDiv = 0;
+  auto error = [&](int v) { return (x[v] - input_[v]).dot(normals_[v]); };
+  auto response = [&](int v) { return (xp[v] - x[v]).dot(normals_[v]) / eps_; };
   for (size_t v = 0; v < x.size(); ++v) {
-    const double e = (x[v] - input_[v]).dot(normals_[v]);
+    const double e = error(v);
     fit += e * e;
-    const double response = (xp[v] - x[v]).dot(normals_[v]) / eps_;
-    gain += std::min(response * response, 1.0);  // a jump counts as a full response, as in div
+    const double r = response(v);
+    gain += std::min(r * r, 1.0);  // a jump counts as a full response, as in div
     if (probe_[v] == 0) continue;
-    const double term = probe_[v] * response;
+    const double term = probe_[v] * r;
     div += boundedDivergence_ ? std::clamp(term, 0.0, 1.0) : term;
+    // The edge differences' part, b_v (L (x' − x)·N / ε)_v: its own response once per measured edge,
+    // less its neighbours'; within [0, degree] as its own term is within [0, 1].
+    if (gradientWeight_ == 0) continue;
+    int degree = 0;
+    double neighbours = 0;
+    for (int u : mesh_.neighbors(static_cast<int>(v)))
+      if (normals_[u].squaredNorm() > 0) {
+        ++degree;
+        neighbours += response(u);
+      }
+    const double edgeTerm = probe_[v] * (degree * r - neighbours);
+    edgeDiv += boundedDivergence_ ? std::clamp(edgeTerm, 0.0, static_cast<double>(degree)) : edgeTerm;
   }
-  // The probe covers probed_ of the measured_ vertices: the trace is scaled up to all of them.
+  if (gradientWeight_ != 0)
+    for (int h = 0; h < mesh_.halfedgeCount(); ++h)
+      if (countsEdge(h)) {
+        const double d = error(mesh_.tail(h)) - error(mesh_.head(h));
+        edgeFit += d * d;
+      }
+  // The probe covers probed_ of the measured_ vertices: the traces are scaled up to all of them, the
+  // edge part by L's diagonal (the degrees) it covers.
   const double scale = probed_ > 0 ? static_cast<double>(measured_) / probed_ : 0.0;
-  return {fit, div * scale, gain * scale};
+  const double edgeScale = probedDegree_ > 0 ? 2 * edges_ / probedDegree_ : 0.0;
+  return {fit, div * scale, gain * scale, edgeFit, edgeDiv * edgeScale};
 }
 
 Risk RiskEstimate::at(const RiskSums& r, double sigma) const {
   const double m = std::max(1, measured_);
   auto position = [&](double s) { return (r.fit - m * s * s + 2 * s * s * r.div) / m; };
-  return {position(sigma * strength_), position(sigma)};
+  // E Σ_edges ((x − x*)_i − (x − x*)_j)² along N = Σ (e_i − e_j)² − σ² tr L + 2σ² tr(L J), L the
+  // graph Laplacian of the edges (tr L = 2 × edges); over 2 × edges, so that the input reads σ².
+  const double twoE = std::max(1.0, 2.0 * edges_);
+  auto gradient = [&](double s) { return (r.edgeFit - twoE * s * s + 2 * s * s * r.edgeDiv) / twoE; };
+  Risk out{position(sigma * strength_), position(sigma), gradient(sigma * strength_), 0};
+  out.ranked = out.position + gradientWeight_ * out.gradient;
+  return out;
 }
 
 namespace {

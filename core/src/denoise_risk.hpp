@@ -3,7 +3,7 @@
 // risk estimate of a candidate's error, from the candidate and the same candidate computed from a
 // probed copy of the input (Monte-Carlo SURE, Ramani, Blu and Unser 2008). The error is measured
 // along the normals N of a smoothed copy of the input: e_i = (x_i − x*_i)·N_i, mean of e² over the
-// vertices.
+// vertices; and the same for its differences across edges, e_i − e_j, which tilt the face normals.
 #include <cstdint>
 #include <vector>
 
@@ -25,12 +25,18 @@ struct RiskOptions {
   // the difference quotient a jump of ±(step / ε), which would swing the risk by far more than the
   // candidates differ (docs/denoising.md#the-risk-estimate).
   bool boundedDivergence = true;
+  // Weight of the risk of the error's differences across edges (its gradient, what tilts the face
+  // normals) beside the risk of the error itself in what candidates are ranked by; 0: position alone
+  // (DenoiseOptions::gradientRiskWeight).
+  double gradientWeight = 0;
 };
 
 // A candidate's risk, in squared length per vertex: `ranked` with σ times the strength (what
 // candidates are ranked by), `unbiased` with σ.
 struct Risk {
   double position = 0, positionUnbiased = 0;
+  double gradient = 0;  // the edge-difference risk, per edge over 2 (σ² for the input), ranked σ
+  double ranked = 0;    // position + gradientWeight × gradient
 };
 
 // What the risk is made of, for one candidate: Σ e², the divergence and the gain
@@ -38,6 +44,7 @@ struct Risk {
 // σ follows from the first two (RiskEstimate::at), the gain serves the noise level's bound.
 struct RiskSums {
   double fit = 0, div = 0, gain = 0;
+  double edgeFit = 0, edgeDiv = 0;  // Σ over edges of (e_i − e_j)², and the estimate of tr(L J)
 };
 
 class RiskEstimate {
@@ -71,12 +78,19 @@ class RiskEstimate {
   int probedVertices() const { return probed_; }
 
  private:
+  // Whether halfedge h stands for its edge (once per edge) between two measured vertices.
+  bool countsEdge(int h) const;
+
+  const Mesh& mesh_;  // the connectivity (its positions are not read)
   const std::vector<Vec3>& input_;
   std::vector<Vec3> normals_;       // N; zero where a vertex has none (not measured)
   std::vector<signed char> probe_;  // b: ±1 at probed vertices, else 0
   double sigma_ = 0, strength_ = 1, eps_ = 0;
   bool boundedDivergence_ = true;
   int measured_ = 0, probed_ = 0;
+  double gradientWeight_ = 0;
+  double edges_ = 0;         // between measured vertices
+  double probedDegree_ = 0;  // Σ over probed vertices of their edges to measured ones
 };
 
 }  // namespace geoshift::denoise_detail

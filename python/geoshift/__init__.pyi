@@ -132,6 +132,7 @@ class DenoiseOptions:
     risk_normal_smoothing: int
     probe_spacing: int
     bounded_divergence: bool
+    gradient_risk_weight: float
     tie_probes: int
     tie_margin: float
     refine_noise: bool
@@ -155,6 +156,7 @@ class DenoiseOptions:
                  candidate_taubin: Union[TaubinOptions, dict, None] = None, taubin_only_margin: float = 0.005,
                  max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
                  risk_normal_smoothing: int = 20, probe_spacing: int = 5, bounded_divergence: bool = True,
+                 gradient_risk_weight: float = 0.0,
                  tie_probes: int = 4, tie_margin: float = 0.01, refine_noise: bool = True,
                  detail_bound_ratio: float = 0.9, high_frequency_level: bool = True, level_lean: float = 1.1,
                  halving_race: bool = True,

@@ -217,6 +217,7 @@ void bindOptions(py::module_& m) {
       .def_readwrite("risk_normal_smoothing", &DenoiseOptions::riskNormalSmoothing)
       .def_readwrite("probe_spacing", &DenoiseOptions::probeSpacing)
       .def_readwrite("bounded_divergence", &DenoiseOptions::boundedDivergence)
+      .def_readwrite("gradient_risk_weight", &DenoiseOptions::gradientRiskWeight)
       .def_readwrite("tie_probes", &DenoiseOptions::tieProbes)
       .def_readwrite("tie_margin", &DenoiseOptions::tieMargin)
       .def_readwrite("refine_noise", &DenoiseOptions::refineNoise)

@@ -432,6 +432,8 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.detailBoundRatio = 1.5; }, "detail bound ratio above 1");
   refuses([](DenoiseOptions& o) { o.detailBoundRatio = std::nan(""); }, "NaN detail bound ratio");
   refuses([](DenoiseOptions& o) { o.levelLean = 0; }, "level lean 0");
+  refuses([](DenoiseOptions& o) { o.gradientRiskWeight = -0.1; }, "negative gradient risk weight");
+  refuses([](DenoiseOptions& o) { o.gradientRiskWeight = std::nan(""); }, "NaN gradient risk weight");
   refuses([](DenoiseOptions& o) { o.levelLean = std::nan(""); }, "NaN level lean");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.passes = 0; }, "paper: no passes");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.meanShift.spatialBandwidth = 0; }, "paper: h_s 0");

@@ -247,6 +247,8 @@ def test_denoise_takes_the_risk_estimate_options(terrain):
         geoshift.denoise(noisy, tie_probes=-1)
     with pytest.raises(ValueError, match="probe spacing must be in"):
         geoshift.denoise(noisy, probe_spacing=0)
+    with pytest.raises(ValueError, match="gradient risk weight must be within"):
+        geoshift.denoise(noisy, gradient_risk_weight=-0.1)
     refined = geoshift.denoise(noisy)
     raw = geoshift.denoise(noisy, refine_noise=False)
     assert raw.stats["noise_level"] >= refined.stats["noise_level"] > 0

@@ -102,6 +102,11 @@ struct DenoiseOptions {
   // went one way for the input and the other for the probe, a jump that would swing the risk
   // (docs/denoising.md#the-risk-estimate). false: the raw difference quotient.
   bool boundedDivergence = true;
+  // Candidates are ranked by the risk of their error along N plus gradientRiskWeight × the risk of
+  // its differences across edges (what tilts the face normals), each estimated the same way. 0, the
+  // default: the error along N alone (0.15 won a case on the tuning set and lost two on the
+  // validation set; docs/denoising.md#the-errors-differences-across-edges).
+  double gradientRiskWeight = 0;
   // A tie between starts: when the best candidates of two or more pre-smoothing step counts rank
   // within tieMargin of the leader's (in units of σ², as the race ranks), each is scored again with
   // up to tieProbes more probes (other signs on the same vertices) and the one of least mean rank
