@@ -168,7 +168,7 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, detailBoundRatio, levelLean, gradientRiskWeight, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin,
+  std::optional<double> strength, detailBoundRatio, levelLean, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
@@ -184,6 +184,7 @@ struct WhatIf {
     if (detailBoundRatio) o.detailBoundRatio = *detailBoundRatio;
     if (levelLean) o.levelLean = *levelLean;
     if (gradientRiskWeight) o.gradientRiskWeight = *gradientRiskWeight;
+    if (impulseSpectrumKurtosis) o.impulseSpectrumKurtosis = *impulseSpectrumKurtosis;
     if (highFrequencyLevel) o.highFrequencyLevel = *highFrequencyLevel;
     if (impulseShrink) o.impulseShrink = *impulseShrink;
     if (impulseKurtosis) o.impulseKurtosis = *impulseKurtosis;
@@ -521,13 +522,14 @@ int usage(const char* error) {
          "  --split            print the families of each set and exit\n"
          "  --oracles-only     only fill the oracles' cache (no denoiser, no report)\n"
          "  --noise-estimate   only the estimated against the true noise level of each case (est: the quadric\n"
-         "                     estimate; high: highFrequencyNoiseLevel, what the default ranks with)\n"
+         "                     estimate; high: highFrequencyNoiseLevel, what the default ranks with; kurtosis: of\n"
+         "                     the same frequencies, the second impulse trigger)\n"
          "  --strength, --detail-bound-ratio, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations,\n"
          "  --radius, --hs, --patience, --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off,\n"
          "  --halving on|off, --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
-         "  --gradient-risk-weight\n"
+         "  --gradient-risk-weight, --impulse-spectrum-kurtosis\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
@@ -578,6 +580,7 @@ int main(int argc, char** argv) {
       else if (a == "--detail-bound-ratio") whatIf.detailBoundRatio = std::stod(value());
       else if (a == "--level-lean") whatIf.levelLean = std::stod(value());
       else if (a == "--gradient-risk-weight") whatIf.gradientRiskWeight = std::stod(value());
+      else if (a == "--impulse-spectrum-kurtosis") whatIf.impulseSpectrumKurtosis = std::stod(value());
       else if (a == "--high-frequency-level") whatIf.highFrequencyLevel = value() != "off";
       else if (a == "--impulse-shrink") whatIf.impulseShrink = std::stod(value());
       else if (a == "--impulse-kurtosis") whatIf.impulseKurtosis = std::stod(value());
@@ -715,9 +718,10 @@ int main(int argc, char** argv) {
           std::lock_guard lock(log);
           ParallelOptions one;
           one.threads = 1;
-          std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | high %.3f | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f)\n",
-                      c.mesh.c_str(), c.noise.c_str(), trueNoiseLevel(c), estimateNoise(c.noisy).level,
-                      highFrequencyNoiseLevel(c.noisy, one), a, b, k1, d, k2, e, k3);
+          const HighFrequencyNoise high = highFrequencyNoise(c.noisy, one);
+          std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | high %.3f | kurtosis %.2f | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f)\n",
+                      c.mesh.c_str(), c.noise.c_str(), trueNoiseLevel(c), estimateNoise(c.noisy).level, high.level,
+                      high.kurtosis, a, b, k1, d, k2, e, k3);
           continue;
         }
         Result& r = results[t];

@@ -30,6 +30,8 @@ void validate(const DenoiseOptions& o) {
     bad("detail bound ratio must be within [0, 1] (got " + std::to_string(o.detailBoundRatio) + ")");
   if (!(o.gradientRiskWeight >= 0 && o.gradientRiskWeight <= 10))
     bad("gradient risk weight must be within [0, 10] (got " + std::to_string(o.gradientRiskWeight) + ")");
+  if (!(o.impulseSpectrumKurtosis >= 0) || !std::isfinite(o.impulseSpectrumKurtosis))
+    bad("impulse spectrum kurtosis must be >= 0 (0: not used; got " + std::to_string(o.impulseSpectrumKurtosis) + ")");
   if (!(o.levelLean > 0 && o.levelLean <= 10)) bad("level lean must be within (0, 10] (got " + std::to_string(o.levelLean) + ")");
   if (o.rangeBandwidths.empty()) bad("range bandwidths need at least one candidate h_r");
   for (double hr : o.rangeBandwidths)
@@ -445,15 +447,18 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   // from the input's highest frequencies before the passes move it. 0: not used, or no vertex far
   // enough from a crease or a boundary.
   double highLevel = 0;
+  const bool rankWithHigh = level == 0 && o.refineNoise && o.highFrequencyLevel;
+  if (rankWithHigh || (o.impulseShrink > 0 && o.impulseSpectrumKurtosis > 0)) {
+    ParallelOptions par;
+    par.threads = o.threads;
+    const HighFrequencyNoise high = highFrequencyNoise(mesh, par);
+    if (rankWithHigh) highLevel = high.level;
+    result.spectrumKurtosis = high.kurtosis;
+  }
   if (level == 0) {
     estimate = estimateNoise(mesh);
     level = estimate.level;
     result.noiseEstimated = true;
-    if (o.refineNoise && o.highFrequencyLevel) {
-      ParallelOptions par;
-      par.threads = o.threads;
-      highLevel = highFrequencyNoiseLevel(mesh, par);
-    }
   }
   level *= o.strength;
   result.noiseLevel = level;
@@ -600,7 +605,8 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());
   result.displacementKurtosis = kurtosis(displacements);
-  if (o.impulseShrink > 0 && result.displacementKurtosis > o.impulseKurtosis) {
+  const bool spectrumSaysImpulsive = o.impulseSpectrumKurtosis > 0 && result.spectrumKurtosis > o.impulseSpectrumKurtosis;
+  if (o.impulseShrink > 0 && (result.displacementKurtosis > o.impulseKurtosis || spectrumSaysImpulsive)) {
     correctOutliers(mesh, input, x, risk.normals(), o.impulseShrink * robustSpread(displacements));
     result.impulseGarrote = true;
   }

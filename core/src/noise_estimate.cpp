@@ -129,7 +129,7 @@ NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples) {
   return out;
 }
 
-double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel) {
+HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& parallel) {
   // docs/denoising.md#noise-estimate. Two applications of the uniform Laplacian L (each vertex less
   // the mean of its neighbours) take a smooth surface, curvature included, to about zero and keep
   // the noise's top frequencies; along the normals n of a smoothed copy, (L²y)·n over the vertices
@@ -138,7 +138,7 @@ double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel
   constexpr int kPower = 2, kProbes = 8, kSupportSteps = 10;
   constexpr double kCreaseDegrees = 30;
   const int nv = mesh.vertexCount();
-  if (nv == 0 || mesh.faceCount() == 0) return 0;
+  if (nv == 0 || mesh.faceCount() == 0) return {};
   Mesh support = mesh;
   TaubinOptions taubin;
   taubin.iterations = kSupportSteps;
@@ -201,15 +201,23 @@ double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel
     for (int k = 0; k < kPower; ++k) b = laplacian(b);
     for (int v = 0; v < nv; ++v) response[v] += b[v] * b[v];
   }
-  double measured = 0, expected = 0;
+  double measured = 0, fourth = 0, expected = 0;
+  int count = 0;
   for (int v = 0; v < nv; ++v) {
     if (out[v] || normal[v].squaredNorm() == 0) continue;
     const double d = high[v].dot(normal[v]);
     measured += d * d;
+    fourth += d * d * d * d;
     expected += response[v] / kProbes;
+    ++count;
   }
-  if (!(expected > 0)) return 0;
-  return std::sqrt(measured / expected) / averageEdgeLength(mesh);
+  if (!(expected > 0) || !(measured > 0)) return {};
+  const double meanSquare = measured / count;
+  return {std::sqrt(measured / expected) / averageEdgeLength(mesh), fourth / count / (meanSquare * meanSquare)};
+}
+
+double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel) {
+  return highFrequencyNoise(mesh, parallel).level;
 }
 
 }  // namespace geoshift

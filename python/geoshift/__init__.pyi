@@ -142,6 +142,7 @@ class DenoiseOptions:
     halving_race: bool
     impulse_kurtosis: float
     impulse_shrink: float
+    impulse_spectrum_kurtosis: float
     seed: int
     threads: int
     paper: PaperDenoiseOptions
@@ -161,6 +162,7 @@ class DenoiseOptions:
                  detail_bound_ratio: float = 0.9, high_frequency_level: bool = True, level_lean: float = 1.1,
                  halving_race: bool = True,
                  impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
+                 impulse_spectrum_kurtosis: float = 5.5,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
                  levels: int = 0, alpha: Sequence[float] = (0.0,),
                  wavelet: Union[WaveletOptions, dict, None] = None) -> None: ...

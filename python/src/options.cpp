@@ -227,6 +227,7 @@ void bindOptions(py::module_& m) {
       .def_readwrite("halving_race", &DenoiseOptions::halvingRace)
       .def_readwrite("impulse_kurtosis", &DenoiseOptions::impulseKurtosis)
       .def_readwrite("impulse_shrink", &DenoiseOptions::impulseShrink)
+      .def_readwrite("impulse_spectrum_kurtosis", &DenoiseOptions::impulseSpectrumKurtosis)
       .def_readwrite("seed", &DenoiseOptions::seed)
       .def_readwrite("threads", &DenoiseOptions::threads)
       .def_readwrite("paper", &DenoiseOptions::paper)

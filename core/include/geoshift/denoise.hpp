@@ -147,6 +147,11 @@ struct DenoiseOptions {
   // least 1).
   double impulseKurtosis = 6;
   double impulseShrink = 2;
+  // The correction also runs when the kurtosis of the input's highest frequencies
+  // (HighFrequencyNoise::kurtosis in noise.hpp, which does not depend on the winner) exceeds
+  // impulseSpectrumKurtosis: detail can hide outliers from the winner's displacement
+  // (docs/denoising.md#impulsive-noise). 0: the winner's kurtosis alone.
+  double impulseSpectrumKurtosis = 5.5;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
   // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risk
   // (mean squared error along the normals): for evaluations and diagnostics.
@@ -174,6 +179,7 @@ struct DenoiseResult {
   int passesRun = 0;            // computed, all candidates (and the probes of a tie)
   int tieProbes = 0;            // more probes run to settle a tie between starts (tieProbes option)
   double displacementKurtosis = 0;  // of the winner's displacement along N (impulseKurtosis)
+  double spectrumKurtosis = 0;      // of the input's highest frequencies (impulseSpectrumKurtosis); 0: not read
   bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
                                 // 0 when below a tenth of the noise level (not resolved)
