@@ -214,8 +214,9 @@ OpParamSpecs denoiseSpecs() {
                 "Taubin step counts (mu -0.502) scored as candidates of their own, without passes; 0: none")
                   .list().byDefault(numbers(d.taubinOnlySteps)).range(0, 10000).appliesWhen(ours),
               P("impulse", T::Enum,
-                "outliers of impulsive noise: auto: corrected when the result's displacements say the noise moved "
-                "few vertices far; on: always corrected, the other vertices mostly kept; off: never")
+                "outliers of impulsive noise: auto: corrected when the result's displacements or the input's highest "
+                "frequencies say the noise moved few vertices far; on: always corrected, the other vertices mostly "
+                "kept; off: never")
                   .choices({"auto", "on", "off"}).byDefault(std::string("auto")).appliesWhen(ours),
               P("maxPasses", T::Integer, "most passes SURE considers")
                   .byDefault(static_cast<double>(d.maxPasses)).range(1, 10000).appliesWhen(ours),

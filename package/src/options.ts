@@ -282,8 +282,9 @@ export interface DenoiseOptions {
    */
   taubinOnly?: number | number[];
   /**
-   * Outliers of impulsive noise: auto: corrected when the result's displacements say the noise
-   * moved few vertices far; on: always corrected, the other vertices mostly kept; off: never.
+   * Outliers of impulsive noise: auto: corrected when the result's displacements or the input's
+   * highest frequencies say the noise moved few vertices far; on: always corrected, the other
+   * vertices mostly kept; off: never.
    *
    * Default: `'auto'`. Applies only where method is 'meanshift' and preset is 'default'.
    */
