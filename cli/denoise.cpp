@@ -53,12 +53,14 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
     line << ", " << r.passesRun << " passes computed";
     // docs/denoising.md#ties-between-starts
     if (r.tieProbes > 0)
-      line << ", a tie between starts settled by " << r.tieProbes << " more probe" << (r.tieProbes > 1 ? "s" : "");
+      line << ", a tie between starts settled by " << r.tieProbes << " more probe" << (r.tieProbes > 1 ? "s" : "")
+           << (r.tieByNormals ? " and the normals' turn" : "");
     line << ")";
     // docs/denoising.md#impulsive-noise
     if (r.impulseGarrote)
       line << (o.impulseKurtosis > 0 ? "; the noise looks impulsive: outliers" : "; outliers (--impulse on)")
-           << " corrected, the other vertices mostly kept";
+           << " corrected, the other vertices mostly kept (kurtosis " << r.displacementKurtosis << " of the displacement, "
+           << r.spectrumKurtosis << " of the highest frequencies)";
   }
   line << ", " << r.threads << " threads";
   std::cerr << line.str() << "\n";

@@ -173,7 +173,7 @@ struct WhatIf {
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes;
-  std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence;
+  std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
   std::vector<int> presmoothing;
@@ -203,6 +203,7 @@ struct WhatIf {
     if (probeSpacing) o.probeSpacing = *probeSpacing;
     if (tieProbes) o.tieProbes = *tieProbes;
     if (tieMargin) o.tieMargin = *tieMargin;
+    if (tieByNormals) o.tieByNormals = *tieByNormals;
     if (supportSteps) o.supportSmoothing.iterations = *supportSteps;
     if (refineNoise) o.refineNoise = *refineNoise;
     if (halving) o.halvingRace = *halving;
@@ -282,7 +283,8 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
            << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "");
     note
          << (o.fixedPasses > 0 ? " (fixed)" : "") << (r.impulseGarrote ? ", impulse garrote" : "")
-         << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe")
+         << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe") +
+                                   (r.tieByNormals ? ", by normals" : "")
                              : "")
          << " (" << r.passesRun << " computed)";
   }
@@ -526,7 +528,7 @@ int usage(const char* error) {
          "                     the same frequencies, the second impulse trigger)\n"
          "  --strength, --detail-bound-ratio, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations,\n"
          "  --radius, --hs, --patience, --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off,\n"
-         "  --halving on|off, --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
+         "  --halving on|off, --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin, --tie-normals on|off,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
          "  --gradient-risk-weight, --impulse-spectrum-kurtosis\n"
@@ -606,6 +608,7 @@ int main(int argc, char** argv) {
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());
       else if (a == "--tie-probes") whatIf.tieProbes = std::stoi(value());
       else if (a == "--tie-margin") whatIf.tieMargin = std::stod(value());
+      else if (a == "--tie-normals") whatIf.tieByNormals = value() != "off";
       else if (a == "--support-steps") whatIf.supportSteps = std::stoi(value());
       else if (a == "--trace") whatIf.trace = true;
       else if (a == "--true-noise") whatIf.trueNoise = true;

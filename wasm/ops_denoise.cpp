@@ -32,8 +32,11 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("rangeBandwidth", r.rangeBandwidth);
       out.stats.set("passesRun", r.passesRun);
       out.stats.set("tieProbes", r.tieProbes);
+      out.stats.set("tieByNormals", r.tieByNormals ? "yes" : "no");
       out.stats.set("estimatedError", r.estimatedError);
       out.stats.set("impulseGarrote", r.impulseGarrote ? "yes" : "no");
+      out.stats.set("displacementKurtosis", r.displacementKurtosis);
+      out.stats.set("spectrumKurtosis", r.spectrumKurtosis);
     }
     out.stats.set("limitedSteps", r.limitedSteps);
     out.stats.set("threads", r.threads);

@@ -58,6 +58,8 @@ void validate(const DenoiseOptions& o) {
   if (o.tieProbes < 0 || o.tieProbes > 100) bad("tie probes must be in [0, 100] (got " + std::to_string(o.tieProbes) + ")");
   if (!(o.tieMargin >= 0) || !std::isfinite(o.tieMargin))
     bad("tie margin must be >= 0 (got " + std::to_string(o.tieMargin) + ")");
+  if (!(o.tieStandardErrors >= 0) || !std::isfinite(o.tieStandardErrors))
+    bad("tie standard errors must be >= 0 (got " + std::to_string(o.tieStandardErrors) + ")");
   if (o.probeSpacing < 1 || o.probeSpacing > 100) bad("probe spacing must be in [1, 100] edges (got " + std::to_string(o.probeSpacing) + ")");
   if (!(o.impulseKurtosis >= 0) || !std::isfinite(o.impulseKurtosis))
     bad("impulse kurtosis must be >= 0 (0: always; got " + std::to_string(o.impulseKurtosis) + ")");
@@ -313,11 +315,13 @@ class CandidateRace {
 
 // A tie between starts (docs/denoising.md#ties-between-starts): the best candidate of each start
 // within o.tieMargin of the leader's rank is scored again with more probes, other signs on the same
-// vertices, until the leader by mean rank leads every other by three standard errors of the
-// difference or o.tieProbes probes have run. Returns the winner's index in `scored`, moves its
+// vertices, until the leader by mean rank leads every other by o.tieStandardErrors standard errors
+// of the difference or o.tieProbes probes have run. If no leader is that far ahead after them all, the
+// contenders it does not lead by that much are tied along N, and with o.tieByNormals the one whose
+// normals turn least across an edge on average wins. Returns the winner's index in `scored`, moves its
 // positions into x and sets `sums` to its sums with the mean divergence of the probes. `leaderX` holds
 // the positions of scored[leaderIndex] (the race's best).
-size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, const Ranking& rank,
+size_t settleTie(const Mesh& mesh, const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, const Ranking& rank,
                  const std::vector<CandidateRace::Scored>& scored, size_t chosen, size_t leaderIndex,
                  std::vector<Vec3>& leaderX, const std::vector<Vec3>& input, const VertexUpdateOptions& inputUpdate,
                  const Progress& progress, DenoiseResult& result, std::vector<Vec3>& x, RiskSums& sums) {
@@ -372,7 +376,11 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
       if (contenders[c].mean() < contenders[l].mean()) l = c;
     return l;
   };
-  for (int k = 1; k <= o.tieProbes; ++k) {
+  auto ahead = [&o](const Contender& c, const Contender& l) {
+    return c.mean() - l.mean() > o.tieStandardErrors * std::sqrt((c.variance() + l.variance()) / c.ranks.size());
+  };
+  bool apart = false;
+  for (int k = 1; k <= o.tieProbes && !apart; ++k) {
     progress.step(1, "settling a tie");
     // Seeds apart from the race's (and from small user seeds) by multiples of 2⁶⁴/φ.
     risk.reseed(o.seed + 0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(k));
@@ -388,13 +396,26 @@ size_t settleTie(const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, co
     }
     result.tieProbes = k;
     const Contender& l = contenders[leader()];
-    bool apart = true;
+    apart = true;
     for (const Contender& c : contenders)
-      if (&c != &l) apart = apart && c.mean() - l.mean() > 3 * std::sqrt((c.variance() + l.variance()) / c.ranks.size());
-    if (apart) break;
+      if (&c != &l) apart = apart && ahead(c, l);
   }
   risk.reseed(o.seed);
-  Contender& won = contenders[leader()];
+  size_t wonAt = leader();
+  if (!apart && o.tieByNormals) {
+    const Contender& l = contenders[wonAt];
+    double least = meanNormalTurn(mesh, l.x);
+    for (size_t c = 0; c < contenders.size(); ++c) {
+      if (c == wonAt || ahead(contenders[c], l)) continue;
+      const double turn = meanNormalTurn(mesh, contenders[c].x);
+      if (turn < least) {
+        least = turn;
+        wonAt = c;
+      }
+    }
+    result.tieByNormals = true;
+  }
+  Contender& won = contenders[wonAt];
   x = std::move(won.x);
   sums = scored[won.index].sums;
   sums.div = won.div / won.ranks.size();
@@ -583,7 +604,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   RiskSums winnerSums;
   {
     std::vector<Vec3> leaderX = race.takeBest();
-    chosen = settleTie(o, passes, risk, rank, scored, chosen, race.bestIndex(), leaderX, input, inputUpdate, progress,
+    chosen = settleTie(mesh, o, passes, risk, rank, scored, chosen, race.bestIndex(), leaderX, input, inputUpdate, progress,
                        result, x, winnerSums);
     if (x.empty() && chosen == race.bestIndex()) x = std::move(leaderX);
   }

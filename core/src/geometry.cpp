@@ -38,6 +38,28 @@ std::vector<Vec3> faceNormals(const Mesh& mesh) {
   return normals;
 }
 
+double meanNormalTurn(const Mesh& mesh, const std::vector<Vec3>& positions) {
+  if (positions.size() != static_cast<size_t>(mesh.vertexCount()))
+    throw InputError("meanNormalTurn: " + std::to_string(positions.size()) + " positions for a mesh of " +
+                     std::to_string(mesh.vertexCount()) + " vertices");
+  std::vector<Vec3> normal(mesh.faceCount(), Vec3::Zero());
+  for (int f = 0; f < mesh.faceCount(); ++f) {
+    const Face& t = mesh.face(f);
+    const Vec3 c = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+    const double len = c.norm();
+    if (len > 0) normal[f] = c / len;
+  }
+  double sum = 0;
+  long edges = 0;
+  for (int h = 0; h < mesh.halfedgeCount(); ++h) {
+    const int o = mesh.twin(h);
+    if (o <= h) continue;
+    sum += std::acos(std::clamp(normal[Mesh::faceOf(h)].dot(normal[Mesh::faceOf(o)]), -1.0, 1.0));
+    ++edges;
+  }
+  return edges > 0 ? sum / static_cast<double>(edges) : 0.0;
+}
+
 std::vector<double> faceAreas(const Mesh& mesh) {
   std::vector<double> areas(mesh.faceCount());
   for (int f = 0; f < mesh.faceCount(); ++f) {

@@ -74,8 +74,11 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["range_bandwidth"] = r.rangeBandwidth;
     out["passes_run"] = r.passesRun;
     out["tie_probes"] = r.tieProbes;
+    out["tie_by_normals"] = r.tieByNormals;
     out["estimated_error"] = r.estimatedError;
     out["impulse_garrote"] = r.impulseGarrote;
+    out["displacement_kurtosis"] = r.displacementKurtosis;
+    out["spectrum_kurtosis"] = r.spectrumKurtosis;
     out["mean_iterations"] = r.meanIterations;
     out["converged_fraction"] = r.convergedFraction;
     out["limited_steps"] = r.limitedSteps;

@@ -220,6 +220,8 @@ void bindOptions(py::module_& m) {
       .def_readwrite("gradient_risk_weight", &DenoiseOptions::gradientRiskWeight)
       .def_readwrite("tie_probes", &DenoiseOptions::tieProbes)
       .def_readwrite("tie_margin", &DenoiseOptions::tieMargin)
+      .def_readwrite("tie_standard_errors", &DenoiseOptions::tieStandardErrors)
+      .def_readwrite("tie_by_normals", &DenoiseOptions::tieByNormals)
       .def_readwrite("refine_noise", &DenoiseOptions::refineNoise)
       .def_readwrite("detail_bound_ratio", &DenoiseOptions::detailBoundRatio)
       .def_readwrite("high_frequency_level", &DenoiseOptions::highFrequencyLevel)

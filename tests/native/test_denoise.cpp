@@ -382,6 +382,46 @@ TEST_CASE("a tie between starts is settled by more probes, and the result is the
   REQUIRE(none.positions() == off.positions());
 }
 
+// A tie the probes leave unsettled goes to the contender whose normals turn least (tieByNormals):
+// the contenders the leader by mean rank does not lead by tieStandardErrors include the leader
+// itself, so the result turns no more than the leader's. Held unsettled here by a lead no probe can
+// reach; every start a contender.
+TEST_CASE("a tie left unsettled by the probes goes to the normals that turn least", "[denoise][tie]") {
+  const std::vector<Mesh> tried = {build(shapes::box(10, 8, 6)), build(shapes::torus(32, 16)), build(shapes::icosphere(3))};
+  int changed = 0;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const Mesh noisy = withNoise(tried[seed % 3], 0.5, seed, NoiseDistribution::Uniform);
+    DenoiseOptions o;
+    o.tieMargin = 1e9;
+    o.tieProbes = 2;
+    o.tieStandardErrors = 1e9;
+    Mesh with = noisy, without = noisy;
+    const DenoiseResult r = denoise(with, o);
+    o.tieByNormals = false;
+    const DenoiseResult r0 = denoise(without, o);
+    const double turn = meanNormalTurn(with, with.positions()), leaderTurn = meanNormalTurn(without, without.positions());
+    INFO("noise seed " << seed << ": Taubin " << r.presmoothingSteps << " + " << r.passes << " against "
+                       << r0.presmoothingSteps << " + " << r0.passes << ", turn " << turn << " against " << leaderTurn);
+    REQUIRE(r.tieProbes == 2);
+    REQUIRE(r0.tieProbes == 2);
+    REQUIRE(r.tieByNormals);
+    REQUIRE_FALSE(r0.tieByNormals);
+    REQUIRE(turn <= leaderTurn);
+    if (with.positions() != without.positions()) {
+      ++changed;
+      REQUIRE(turn < leaderTurn);
+    }
+  }
+  CHECK(changed > 0);
+  // Settled by the probes (the default lead of 3 standard errors, one probe on this box): the
+  // normals are not asked.
+  Mesh settled = withNoise(tried[0], 0.5, 1, NoiseDistribution::Uniform);
+  DenoiseOptions o;
+  o.tieMargin = 1e9;
+  o.tieProbes = 1;
+  REQUIRE_FALSE(denoise(settled, o).tieByNormals);
+}
+
 // docs/denoising.md#taubin-only-candidates. A smooth sphere under dense Gaussian noise, where the
 // candidates with passes may start only from the raw input and run at most one pass: smoothing it
 // with many Taubin steps is far better, so a Taubin-only candidate must win, and the result must be
@@ -482,6 +522,7 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.impulseKurtosis = std::nan(""); }, "NaN impulse kurtosis");
   refuses([](DenoiseOptions& o) { o.tieProbes = -1; }, "negative tie probes");
   refuses([](DenoiseOptions& o) { o.tieMargin = std::nan(""); }, "NaN tie margin");
+  refuses([](DenoiseOptions& o) { o.tieStandardErrors = -1; }, "negative tie standard errors");
   refuses([](DenoiseOptions& o) { o.taubinOnlySteps = {8, 5}; }, "Taubin-only steps descending");
   refuses([](DenoiseOptions& o) { o.taubinOnlySteps = {0, 5}; }, "Taubin-only steps 0");
   refuses([](DenoiseOptions& o) { o.candidateTaubin.mu = -0.4; }, "Taubin-only mu above -lambda");

@@ -138,3 +138,32 @@ TEST_CASE("unit cube transform maps the box to longest side 1, centred", "[geome
   CHECK(box.max().maxCoeff() <= 1 + 1e-14);
   CHECK(boundingBox({}).isEmpty());
 }
+
+TEST_CASE("meanNormalTurn is the normals' mean angle across interior edges", "[geometry][normals]") {
+  // The cube's 12 edges turn by a right angle and its 6 face diagonals not at all.
+  const Mesh cube = build(shapes::cube());
+  CHECK(meanNormalTurn(cube, cube.positions()) == Approx(M_PI / 3).epsilon(1e-14));
+  // Every edge of the icosahedron turns by π minus its dihedral angle, acos(√5 / 3).
+  const Mesh ico = build(shapes::icosphere(0));
+  REQUIRE(ico.vertexCount() == 12);
+  CHECK(meanNormalTurn(ico, ico.positions()) == Approx(std::acos(std::sqrt(5.0) / 3)).epsilon(1e-12));
+  // The positions given, not the mesh's: a scaled copy turns the same, a flat grid not at all (its
+  // boundary edges do not count), and folding the grid's half up by θ adds θ on the fold's edges.
+  std::vector<Vec3> scaled = ico.positions();
+  for (Vec3& p : scaled) p *= 7;
+  CHECK(meanNormalTurn(ico, scaled) == Approx(std::acos(std::sqrt(5.0) / 3)).epsilon(1e-12));
+  const Mesh grid = build(shapes::grid(9));
+  CHECK(meanNormalTurn(grid, grid.positions()) == 0.0);
+  const double theta = 0.4;
+  std::vector<Vec3> folded = grid.positions();
+  for (Vec3& p : folded)
+    if (p.x() > 0.5) p = Vec3(0.5 + (p.x() - 0.5) * std::cos(theta), p.y(), (p.x() - 0.5) * std::sin(theta));
+  // 9 × 9 vertices: 208 edges, 32 on the boundary; the fold runs along 8 of the 176 interior ones.
+  CHECK(meanNormalTurn(grid, folded) == Approx(8 * theta / 176).epsilon(1e-12));
+  // Noise adds to it.
+  const Mesh sphere = build(shapes::icosphere(3));
+  std::vector<Vec3> noisy = sphere.positions();
+  for (size_t v = 0; v < noisy.size(); ++v) noisy[v] *= 1 + 0.03 * std::sin(12.9898 * v);
+  CHECK(meanNormalTurn(sphere, noisy) > 1.5 * meanNormalTurn(sphere, sphere.positions()));
+  CHECK_THROWS_WITH(meanNormalTurn(sphere, grid.positions()), Catch::Contains("positions for a mesh of"));
+}

@@ -209,6 +209,9 @@ def test_denoise_says_when_the_noise_looks_impulsive(terrain):
     off = geoshift.denoise(noisy, impulse_shrink=0)
     assert on.stats["impulse_garrote"] is True
     assert off.stats["impulse_garrote"] is False
+    # What fired it: the kurtosis of the input's highest frequencies or of the winner's displacement.
+    assert max(on.stats["spectrum_kurtosis"] - geoshift.DenoiseOptions().impulse_spectrum_kurtosis,
+               on.stats["displacement_kurtosis"] - geoshift.DenoiseOptions().impulse_kurtosis) > 0
     kept = np.all(on.mesh.positions == noisy.positions, axis=1)
     assert kept.mean() > 0.8
     assert np.all(off.mesh.positions == noisy.positions, axis=1).mean() < 0.5
@@ -249,6 +252,13 @@ def test_denoise_takes_the_risk_estimate_options(terrain):
         geoshift.denoise(noisy, probe_spacing=0)
     with pytest.raises(ValueError, match="gradient risk weight must be within"):
         geoshift.denoise(noisy, gradient_risk_weight=-0.1)
+    with pytest.raises(ValueError, match="tie standard errors must be"):
+        geoshift.denoise(noisy, tie_standard_errors=-1)
+    # A tie no probe can settle (docs/denoising.md#ties-between-starts): the normals decide, and say so.
+    tied = geoshift.denoise(noisy, tie_margin=1e9, tie_probes=1, tie_standard_errors=1e9)
+    assert tied.stats["tie_probes"] == 1 and tied.stats["tie_by_normals"] is True
+    assert geoshift.denoise(noisy, tie_margin=1e9, tie_probes=1, tie_standard_errors=1e9,
+                            tie_by_normals=False).stats["tie_by_normals"] is False
     refined = geoshift.denoise(noisy)
     raw = geoshift.denoise(noisy, refine_noise=False)
     assert raw.stats["noise_level"] >= refined.stats["noise_level"] > 0

@@ -114,6 +114,10 @@ test('impulse "on" corrects outliers under dense noise as `geoshift denoise --im
   assert.equal(auto.stats.impulseGarrote, 'no');  // noise on every vertex: not impulsive
   assert.equal(on.stats.impulseGarrote, 'yes');
   assert.equal(never.stats.impulseGarrote, 'no');
+  // The two kurtoses the trigger reads, both below their thresholds under dense noise (the highest
+  // frequencies' 0, not read: no vertex of the box is three rings from a crease).
+  assert.equal(auto.stats.spectrumKurtosis, 0);
+  assert.ok(auto.stats.displacementKurtosis > 0 && auto.stats.displacementKurtosis < 6, String(auto.stats.displacementKurtosis));
   assert.ok(sameBits(never.positions, auto.positions), 'off differs from auto where auto does not fire');
   assert.ok(!sameBits(on.positions, auto.positions), 'on changed nothing');
   assertClose(assert, on.positions, runNative(dir, 'denoise', off, ['--impulse', 'on'])('POSITION'), 'positions');

@@ -115,6 +115,12 @@ struct DenoiseOptions {
   // (docs/denoising.md#ties-between-starts). tieProbes 0: never.
   int tieProbes = 4;
   double tieMargin = 0.01;
+  double tieStandardErrors = 3;  // the lead, in standard errors of the difference, that settles it
+  // When the probes run out with no contender that far ahead, those the leader does not lead by
+  // that much are tied along N, which cannot tell their normals apart: the one whose
+  // face normals turn least across an edge on average (the normal field's total variation) wins (docs/denoising.md#ties-between-starts).
+  // false: the leader by mean rank, however slight its lead.
+  bool tieByNormals = true;
   // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
   // refined from the candidates (the least variance a good one implies) and they are ranked again
   // (docs/denoising.md#the-noise-level).
@@ -178,6 +184,7 @@ struct DenoiseResult {
   int passes = 0;               // chosen
   int passesRun = 0;            // computed, all candidates (and the probes of a tie)
   int tieProbes = 0;            // more probes run to settle a tie between starts (tieProbes option)
+  bool tieByNormals = false;    // they left it tied along N, and the normals' turn decided (tieByNormals)
   double displacementKurtosis = 0;  // of the winner's displacement along N (impulseKurtosis)
   double spectrumKurtosis = 0;      // of the input's highest frequencies (impulseSpectrumKurtosis); 0: not read
   bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)

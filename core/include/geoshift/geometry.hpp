@@ -23,6 +23,14 @@ inline Vec3 faceCross(const Mesh& mesh, int f) {
 std::vector<Vec3> faceNormals(const Mesh& mesh);
 std::vector<double> faceAreas(const Mesh& mesh);
 
+// The mean over interior edges of the angle (radians) between the normals of the two faces, with
+// the mesh's faces at `positions` (one per vertex): the face normal field's total variation per
+// edge. Noise adds to it; a crease adds about the same kept sharp or rounded over a few edges, and a
+// curved part about the same smooth or in facets. A face of zero area has a zero normal (a right
+// angle to any other). 0 for a mesh with no interior edge; InputError when the positions are not one
+// per vertex.
+double meanNormalTurn(const Mesh& mesh, const std::vector<Vec3>& positions);
+
 // Angle-weighted vertex normals (Thürmer–Wüthrich); zero for isolated vertices.
 std::vector<Vec3> vertexNormals(const Mesh& mesh);
 
