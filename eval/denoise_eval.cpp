@@ -168,7 +168,7 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, detailBoundRatio, levelLean, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin,
+  std::optional<double> strength, detailBoundRatio, levelLean, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
@@ -203,6 +203,7 @@ struct WhatIf {
     if (probeSpacing) o.probeSpacing = *probeSpacing;
     if (tieProbes) o.tieProbes = *tieProbes;
     if (tieMargin) o.tieMargin = *tieMargin;
+    if (tieStandardErrors) o.tieStandardErrors = *tieStandardErrors;
     if (tieByNormals) o.tieByNormals = *tieByNormals;
     if (supportSteps) o.supportSmoothing.iterations = *supportSteps;
     if (refineNoise) o.refineNoise = *refineNoise;
@@ -528,7 +529,8 @@ int usage(const char* error) {
          "                     the same frequencies, the second impulse trigger)\n"
          "  --strength, --detail-bound-ratio, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations,\n"
          "  --radius, --hs, --patience, --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off,\n"
-         "  --halving on|off, --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin, --tie-normals on|off,\n"
+         "  --halving on|off, --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
+         "  --tie-standard-errors, --tie-normals on|off,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
          "  --gradient-risk-weight, --impulse-spectrum-kurtosis\n"
@@ -608,6 +610,7 @@ int main(int argc, char** argv) {
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());
       else if (a == "--tie-probes") whatIf.tieProbes = std::stoi(value());
       else if (a == "--tie-margin") whatIf.tieMargin = std::stod(value());
+      else if (a == "--tie-standard-errors") whatIf.tieStandardErrors = std::stod(value());
       else if (a == "--tie-normals") whatIf.tieByNormals = value() != "off";
       else if (a == "--support-steps") whatIf.supportSteps = std::stoi(value());
       else if (a == "--trace") whatIf.trace = true;

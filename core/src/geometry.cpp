@@ -42,19 +42,20 @@ double meanNormalTurn(const Mesh& mesh, const std::vector<Vec3>& positions) {
   if (positions.size() != static_cast<size_t>(mesh.vertexCount()))
     throw InputError("meanNormalTurn: " + std::to_string(positions.size()) + " positions for a mesh of " +
                      std::to_string(mesh.vertexCount()) + " vertices");
-  std::vector<Vec3> normal(mesh.faceCount(), Vec3::Zero());
-  for (int f = 0; f < mesh.faceCount(); ++f) {
+  // Each face's normal computed where it is needed (twice per face), so that nothing the size of
+  // the mesh is allocated: the denoiser calls this while it holds several copies of the positions.
+  auto normal = [&](int f) -> Vec3 {
     const Face& t = mesh.face(f);
     const Vec3 c = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
     const double len = c.norm();
-    if (len > 0) normal[f] = c / len;
-  }
+    return len > 0 ? Vec3(c / len) : Vec3::Zero();
+  };
   double sum = 0;
   long edges = 0;
   for (int h = 0; h < mesh.halfedgeCount(); ++h) {
     const int o = mesh.twin(h);
     if (o <= h) continue;
-    sum += std::acos(std::clamp(normal[Mesh::faceOf(h)].dot(normal[Mesh::faceOf(o)]), -1.0, 1.0));
+    sum += std::acos(std::clamp(normal(Mesh::faceOf(h)).dot(normal(Mesh::faceOf(o))), -1.0, 1.0));
     ++edges;
   }
   return edges > 0 ? sum / static_cast<double>(edges) : 0.0;
