@@ -160,7 +160,7 @@ class DenoiseOptions:
                  max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
                  risk_normal_smoothing: int = 20, probe_spacing: int = 5, bounded_divergence: bool = True,
                  gradient_risk_weight: float = 0.0,
-                 tie_probes: int = 4, tie_margin: float = 0.01, tie_standard_errors: float = 3.0,
+                 tie_probes: int = 4, tie_margin: float = 0.01, tie_standard_errors: float = 4.0,
                  tie_by_normals: bool = True, refine_noise: bool = True,
                  detail_bound_ratio: float = 0.9, high_frequency_level: bool = True, level_lean: float = 1.1,
                  halving_race: bool = True,

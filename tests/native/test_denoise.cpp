@@ -413,7 +413,7 @@ TEST_CASE("a tie left unsettled by the probes goes to the normals that turn leas
     }
   }
   CHECK(changed > 0);
-  // Settled by the probes (the default lead of 3 standard errors, one probe on this box): the
+  // Settled by the probes (the default lead of 4 standard errors, one probe on this box): the
   // normals are not asked.
   Mesh settled = withNoise(tried[0], 0.5, 1, NoiseDistribution::Uniform);
   DenoiseOptions o;

@@ -110,16 +110,16 @@ struct DenoiseOptions {
   // A tie between starts: when the best candidates of two or more pre-smoothing step counts rank
   // within tieMargin of the leader's (in units of σ², as the race ranks), each is scored again with
   // up to tieProbes more probes (other signs on the same vertices) and the one of least mean rank
-  // wins; the probes stop once the leader's lead is three standard errors. One probe's spread would
-  // otherwise let the seed decide between candidates of very different normals
+  // wins; the probes stop once the leader's lead is tieStandardErrors standard errors. One probe's
+  // spread would otherwise let the seed decide between candidates of very different normals
   // (docs/denoising.md#ties-between-starts). tieProbes 0: never.
   int tieProbes = 4;
   double tieMargin = 0.01;
-  double tieStandardErrors = 3;  // the lead, in standard errors of the difference, that settles it
+  double tieStandardErrors = 4;  // the lead, in standard errors of the difference, that settles it
   // When the probes run out with no contender that far ahead, those the leader does not lead by
-  // that much are tied along N, which cannot tell their normals apart: the one whose
-  // face normals turn least across an edge on average (the normal field's total variation) wins (docs/denoising.md#ties-between-starts).
-  // false: the leader by mean rank, however slight its lead.
+  // that much are tied along N, which cannot tell their normals apart: the one whose face normals
+  // turn least across an edge on average (the normal field's total variation, meanNormalTurn) wins
+  // (docs/denoising.md#ties-between-starts). false: the leader by mean rank, however slight its lead.
   bool tieByNormals = true;
   // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
   // refined from the candidates (the least variance a good one implies) and they are ranked again
