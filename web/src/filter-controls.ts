@@ -4,6 +4,7 @@
 
 import type { Mesh } from 'three';
 import type { LoadedModel } from './loaders';
+import { chosenSummary } from './denoise-summary';
 import { exportGlb, download, exportName } from './export';
 import { meshStates, revert, scalarNames, type MeshState } from './model';
 import type { ParameterPanel } from './panel';
@@ -14,7 +15,6 @@ import type { ScalarView } from './scalar-view';
 import type { StatusLine } from './status';
 import type { Viewer } from './viewer';
 import type { ViewModeControl } from './view-mode-control';
-import { counted } from './words';
 import { GeoshiftError, type WorkerClient } from './worker/client';
 
 export interface FilterElements {
@@ -279,12 +279,8 @@ export class FilterControls {
       if (estimate) {
         const level = (estimate.noiseLevel as number).toPrecision(2);
         rows.push(['Noise level', `${level} × AEL${estimate.noiseEstimated === 'yes' ? ' (measured on the mesh)' : ''}`]);
-        if (typeof estimate.presmoothingSteps === 'number' && typeof estimate.passes === 'number')
-          rows.push(['Chosen', (estimate.taubinOnly === 'yes'
-            ? `${counted(estimate.presmoothingSteps, 'Taubin step')} alone (no pass)`
-            : `${counted(estimate.presmoothingSteps, 'Taubin step')} + ${counted(estimate.passes, 'pass', 'passes')}`) +
-            (typeof estimate.rangeBandwidth === 'number' && estimate.rangeBandwidth > 0 ? ` at Keep edges ${estimate.rangeBandwidth}` : '') +
-            (estimate.impulseGarrote === 'yes' ? '; impulsive noise: only the outliers moved' : '')]);
+        const chosen = chosenSummary(estimate);
+        if (chosen) rows.push(['Chosen', chosen]);
       }
       if (report.error) {
         const pct = (v: number) => `${((100 * v) / Math.max(report.error!.diagonal, 1e-30)).toFixed(3)}%`;

@@ -1,0 +1,54 @@
+// Unit tests of web/src/denoise-summary.ts (the app's "Chosen" row), run in the browser through the
+// Vite dev server, which compiles the TypeScript on request: the code the app runs.
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import { useApp } from './harness.mjs';
+
+const app = useApp();
+
+/** chosenSummary of `stats` in the page. */
+function chosen(stats) {
+  return app.page.evaluate(async (s) => {
+    const { chosenSummary } = await import('/src/denoise-summary.ts');
+    return chosenSummary(s);
+  }, stats);
+}
+
+// What the wasm op returns for a default denoise (wasm/ops_denoise.cpp), without a tie.
+const PASSES = {
+  preset: 'default', noiseLevel: 0.25, noiseEstimated: 'yes', presmoothingSteps: 15, passes: 2, taubinOnly: 'no',
+  rangeBandwidth: 0.35, passesRun: 40, tieProbes: 0, tieByNormals: 'no', impulseGarrote: 'no',
+};
+
+test('the start, the passes and the range bandwidth are named, in the singular where one', async () => {
+  assert.equal(await chosen(PASSES), '15 Taubin steps + 2 passes at Keep edges 0.35');
+  assert.equal(await chosen({ ...PASSES, presmoothingSteps: 1, passes: 1 }), '1 Taubin step + 1 pass at Keep edges 0.35');
+  assert.equal(await chosen({ ...PASSES, passes: 0 }), '15 Taubin steps + 0 passes at Keep edges 0.35');
+});
+
+test('a Taubin-only result has no passes and no range bandwidth', async () => {
+  assert.equal(await chosen({ ...PASSES, presmoothingSteps: 27, passes: 0, taubinOnly: 'yes', rangeBandwidth: 0 }),
+    '27 Taubin steps alone (no pass)');
+});
+
+test('a tie says how many more probes settled it, and when the normals did', async () => {
+  assert.equal(await chosen({ ...PASSES, tieProbes: 1 }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35; a close call between two starts, settled by 1 more probe');
+  assert.equal(await chosen({ ...PASSES, tieProbes: 4, tieByNormals: 'yes' }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35; a close call between two starts, settled by 4 more probes' +
+    ' and then by the smoother normals');
+  // The normals decide only after probes; a stat without probes says nothing of a tie.
+  assert.equal(await chosen({ ...PASSES, tieProbes: 0, tieByNormals: 'yes' }), '15 Taubin steps + 2 passes at Keep edges 0.35');
+});
+
+test('the impulse correction is named after the tie', async () => {
+  assert.equal(await chosen({ ...PASSES, presmoothingSteps: 3, passes: 1, tieProbes: 2, impulseGarrote: 'yes' }),
+    '3 Taubin steps + 1 pass at Keep edges 0.35; a close call between two starts, settled by 2 more probes;' +
+    ' impulsive noise: only the outliers moved');
+});
+
+test('stats of another filter or of the paper preset have no Chosen row', async () => {
+  assert.equal(await chosen({ method: 'taubin', iterations: 20, threads: 1 }), null);
+  assert.equal(await chosen({ preset: 'paper', passes: 3, meanIterations: 7.5 }), null);
+  assert.equal(await chosen({}), null);
+});

@@ -1,0 +1,32 @@
+// What the default denoiser chose on a mesh, in words, from the stats the wasm op returns
+// (wasm/ops_denoise.cpp): the app's "Chosen" row. The choice itself is described in
+// docs/denoising.md#the-default-pipeline; this only words it, as the CLI's report line does.
+import { counted } from './words';
+
+/** The stats of one mesh's run: the op's named numbers and strings. */
+export type DenoiseStats = Readonly<Record<string, number | string | undefined>>;
+
+/**
+ * "15 Taubin steps + 2 passes at Keep edges 0.35", "27 Taubin steps alone (no pass)", with what
+ * decided a close call between the starts and whether only outliers were moved; null for stats
+ * that are not the default denoiser's (another filter, the paper preset).
+ */
+export function chosenSummary(stats: DenoiseStats): string | null {
+  const steps = stats.presmoothingSteps;
+  const passes = stats.passes;
+  if (typeof steps !== 'number' || typeof passes !== 'number' || typeof stats.noiseLevel !== 'number') return null;
+  let text =
+    stats.taubinOnly === 'yes'
+      ? `${counted(steps, 'Taubin step')} alone (no pass)`
+      : `${counted(steps, 'Taubin step')} + ${counted(passes, 'pass', 'passes')}`;
+  if (stats.taubinOnly !== 'yes' && typeof stats.rangeBandwidth === 'number' && stats.rangeBandwidth > 0)
+    text += ` at Keep edges ${stats.rangeBandwidth}`;
+  // docs/denoising.md#ties-between-starts: more probes, and where they leave it open, the normals.
+  const probes = stats.tieProbes;
+  if (typeof probes === 'number' && probes > 0)
+    text +=
+      `; a close call between two starts, settled by ${counted(probes, 'more probe', 'more probes')}` +
+      (stats.tieByNormals === 'yes' ? ' and then by the smoother normals' : '');
+  if (stats.impulseGarrote === 'yes') text += '; impulsive noise: only the outliers moved';
+  return text;
+}
