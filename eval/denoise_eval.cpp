@@ -5,6 +5,7 @@
 // published result. Cases are split into a tuning set and a validation set by family; the report
 // gives each set on its own.
 //   denoise_eval [--set tuning|validation|all] [--mesh SUBSTRING] [--seeds LIST] [--markdown FILE] ...
+//   denoise_eval --compare BEFORE AFTER   (two files written by --results)
 #include <algorithm>
 #include <atomic>
 #include <cctype>
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include "catalogue.hpp"
+#include "compare.hpp"
 #include "geoshift/bilateral_normal.hpp"
 #include "geoshift/denoise.hpp"
 #include "geoshift/error.hpp"
@@ -540,6 +542,9 @@ int usage(const char* error) {
          "  --true-noise       the denoiser is given the true noise level (an oracle experiment)\n"
          "  --cache DIR        the oracles' score cache (default build/eval-cache); --no-cache to recompute\n"
          "  --markdown FILE    also write the report to FILE\n"
+         "  --results FILE     also write every case's figures at every probe seed to FILE, for --compare\n"
+         "  --compare BEFORE AFTER   no evaluation: compare two --results files case by case (verdicts that\n"
+         "                     changed, ratios, and a signed-rank test of the changes in RMS and normal error)\n"
          "  --data DIR         the shared data folder (default ../shared/data of the repository)\n";
   return error ? 2 : 0;
 }
@@ -547,7 +552,8 @@ int usage(const char* error) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string filter, markdownPath, setFilter = "all";
+  std::string filter, markdownPath, resultsPath, setFilter = "all";
+  std::vector<std::string> compare;
   bool quick = false, pairsOnly = false, paper = false, splitOnly = false, noiseOnly = false, oraclesOnly = false;
   int jobs = 2;
   std::vector<std::uint64_t> seeds = {1};
@@ -621,6 +627,11 @@ int main(int argc, char** argv) {
       else if (a == "--cache") cache.dir = value();
       else if (a == "--no-cache") cache.dir.clear();
       else if (a == "--markdown") markdownPath = value();
+      else if (a == "--results") resultsPath = value();
+      else if (a == "--compare") {
+        compare.push_back(value());
+        compare.push_back(value());
+      }
       else if (a == "--data") data = value();
       else if (a == "-h" || a == "--help") return usage(nullptr);
       else return usage(("unknown argument '" + a + "'").c_str());
@@ -629,6 +640,21 @@ int main(int argc, char** argv) {
     }
   }
   if (setFilter != "all" && setFilter != "tuning" && setFilter != "validation") return usage("--set takes tuning, validation or all");
+  if (!compare.empty()) {
+    try {
+      std::vector<CaseFigures> runs[2];
+      for (int k = 0; k < 2; ++k) {
+        std::ifstream in(compare[k]);
+        if (!in) throw InputError(compare[k] + ": cannot open");
+        runs[k] = readResults(in, compare[k]);
+      }
+      std::cout << "# " << compare[1] << " against " << compare[0] << "\n\n" << compareResults(runs[0], runs[1]);
+      return 0;
+    } catch (const std::exception& e) {
+      std::cerr << "denoise_eval: error: " << e.what() << "\n";
+      return 1;
+    }
+  }
 
   // The catalogue and its split.
   std::vector<MeshEntry> meshes = cleanMeshes(data);
@@ -783,6 +809,27 @@ int main(int argc, char** argv) {
     std::ofstream(tmp) << md.str();
     fs::rename(tmp, markdownPath);
     std::cerr << "denoise_eval: report written to " << markdownPath << "\n";
+  }
+  if (!resultsPath.empty()) {
+    std::vector<CaseFigures> figures;
+    for (const Result& r : results) {
+      for (size_t k = 0; k < seeds.size(); ++k) {
+        const Score& o = r.ours[k];
+        figures.push_back({setName(r.c->set), r.c->mesh, r.c->noise, seeds[k], o.rms, o.angle,
+                           std::min(r.taubin.rms, r.bilateral.rms), std::min(r.taubin.angle, r.bilateral.angle)});
+      }
+    }
+    const fs::path tmp = resultsPath + ".tmp";
+    {
+      std::ofstream out(tmp);
+      writeResults(out, figures);
+      if (!out) {
+        std::cerr << "denoise_eval: error: cannot write " << tmp.string() << "\n";
+        return 1;
+      }
+    }
+    fs::rename(tmp, resultsPath);
+    std::cerr << "denoise_eval: results written to " << resultsPath << "\n";
   }
   return 0;
 }

@@ -1,0 +1,169 @@
+// eval/compare.hpp: the comparison of two denoise_eval runs (docs/denoising.md#comparing-two-runs).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <sstream>
+
+#include "compare.hpp"
+#include "geoshift/error.hpp"
+
+using namespace geoshift;
+using namespace geoshift::eval;
+
+namespace {
+
+// W⁺'s mean and variance over every assignment of signs to |d| (each equally likely under the
+// null hypothesis), the ranks taken as signedRankTest takes them: a brute-force reference.
+std::pair<double, double> exactMoments(const std::vector<double>& magnitudes) {
+  const int n = static_cast<int>(magnitudes.size());
+  double sum = 0, sumSquares = 0;
+  const int count = 1 << n;
+  for (int signs = 0; signs < count; ++signs) {
+    std::vector<double> d;
+    for (int i = 0; i < n; ++i) d.push_back((signs >> i & 1) ? magnitudes[i] : -magnitudes[i]);
+    const double w = signedRankTest(d).wPlus;
+    sum += w;
+    sumSquares += w * w;
+  }
+  const double mean = sum / count;
+  return {mean, sumSquares / count - mean * mean};
+}
+
+CaseFigures figures(std::string set, std::string mesh, std::uint64_t seed, double rms, double angle, double bestRms,
+                    double bestAngle) {
+  return {std::move(set), std::move(mesh), "fixed 0.5 AEL random dir.", seed, rms, angle, bestRms, bestAngle};
+}
+
+}  // namespace
+
+TEST_CASE("the signed-rank statistic's null mean and variance match an enumeration of the signs, ties included",
+          "[eval][compare]") {
+  for (const std::vector<double>& m : {std::vector<double>{0.3, 1.2, 0.7, 2.5, 0.1, 1.9},
+                                       std::vector<double>{0.5, 0.5, 0.5, 1.0, 2.0, 2.0, 3.0},
+                                       std::vector<double>{1, 1, 1, 1, 1, 1, 1, 1}}) {
+    const auto [mean, variance] = exactMoments(m);
+    const SignedRank t = signedRankTest(m);
+    CHECK(t.mean == Approx(mean).margin(1e-9));
+    CHECK(t.variance == Approx(variance).margin(1e-9));
+  }
+}
+
+TEST_CASE("the signed-rank test: a hand-worked case, a clear shift, a symmetric set and zeros", "[eval][compare]") {
+  // d = (1, -2, 3, 4, -5): ranks 1..5, W⁺ = 1 + 3 + 4 = 8, mean 7.5, variance 5·6·11/24 = 13.75.
+  const SignedRank a = signedRankTest({1, -2, 3, 4, -5});
+  CHECK(a.n == 5);
+  CHECK(a.positive == 3);
+  CHECK(a.negative == 2);
+  CHECK(a.wPlus == 8);
+  CHECK(a.variance == Approx(13.75));
+  CHECK(a.z == Approx(0.5 / std::sqrt(13.75)));
+  CHECK(a.p == Approx(std::erfc(a.z / std::sqrt(2.0))));
+
+  std::vector<double> up;
+  for (int i = 1; i <= 20; ++i) up.push_back(0.01 * i);
+  const SignedRank b = signedRankTest(up);
+  CHECK(b.wPlus == 210);
+  CHECK(b.z > 3.9);
+  CHECK(b.p < 1e-4);
+  for (double& x : up) x = -x;
+  CHECK(signedRankTest(up).z == Approx(-b.z));
+
+  const SignedRank c = signedRankTest({-0.2, 0.2, -0.7, 0.7, 0, 0, 0});
+  CHECK(c.zeros == 3);
+  CHECK(c.n == 4);
+  CHECK(c.z == Approx(0).margin(1e-12));
+  CHECK(c.p == Approx(1));
+
+  const SignedRank none = signedRankTest({0, 0});
+  CHECK(none.n == 0);
+  CHECK(none.p == 1);
+}
+
+TEST_CASE("the verdict is the scoreboard's: figures compared as printed", "[eval][compare]") {
+  // 0.1234 prints as 0.123, at the oracle's 0.1231; 4.004° prints as 4.00.
+  CHECK(won(figures("tuning", "A", 1, 0.1234, 4.004, 0.1231, 4.0)));
+  CHECK_FALSE(won(figures("tuning", "A", 1, 0.1236, 4.0, 0.1231, 4.0)));
+  CHECK_FALSE(won(figures("tuning", "A", 1, 0.1, 4.01, 0.2, 4.0)));
+  CHECK(ratio(figures("tuning", "A", 1, 0.2, 4.0, 0.1, 4.0)) == Approx(2.0));
+  CHECK(ratio(figures("tuning", "A", 1, 0.1, 6.0, 0.2, 4.0)) == Approx(1.5));
+}
+
+TEST_CASE("results written and read back are the same figures, to the last bit", "[eval][compare]") {
+  const std::vector<CaseFigures> cases = {figures("tuning", "(2, 5) knot tube (procedural)", 1, 0.1 / 3, 1.0 / 7, 0.05, 2.5),
+                                          figures("validation", "Boot", 8, 0.115, 14.34, 0.118, 14.23)};
+  std::stringstream file;
+  writeResults(file, cases);
+  const std::vector<CaseFigures> back = readResults(file, "r.tsv");
+  REQUIRE(back.size() == 2);
+  for (size_t i = 0; i < 2; ++i) {
+    CHECK(back[i].set == cases[i].set);
+    CHECK(back[i].mesh == cases[i].mesh);
+    CHECK(back[i].noise == cases[i].noise);
+    CHECK(back[i].seed == cases[i].seed);
+    CHECK(back[i].rms == cases[i].rms);
+    CHECK(back[i].angle == cases[i].angle);
+    CHECK(back[i].bestRms == cases[i].bestRms);
+    CHECK(back[i].bestAngle == cases[i].bestAngle);
+  }
+}
+
+TEST_CASE("a bad results file is refused with its name and line", "[eval][compare]") {
+  auto refuses = [](const std::string& text, const std::string& message) {
+    std::stringstream in(text);
+    try {
+      readResults(in, "r.tsv");
+      FAIL("accepted: " << text);
+    } catch (const InputError& e) {
+      CHECK_THAT(e.what(), Catch::Contains(message));
+    }
+  };
+  const std::string head = "# denoise_eval results 1\nset\tmesh\tnoise\tseed\trms\tangle\tbest_rms\tbest_angle\n";
+  refuses("", "r.tsv: no header");
+  refuses("| case | noise |\n", "not a results file of denoise_eval --results");
+  refuses("# denoise_eval results 1\n", "r.tsv: no header");
+  refuses("# denoise_eval results 1\nset\tmesh\n", "r.tsv line 2: expected the header");
+  refuses(head + "tuning\tA\tn\t1\t0.1\t2\t0.1\n", "r.tsv line 3: expected 8 tab-separated fields, found 7");
+  refuses(head + "tuning\tA\tn\t1\t0.1x\t2\t0.1\t2\n", "r.tsv line 3: '0.1x' in column rms is not a finite number");
+  refuses(head + "tuning\tA\tn\t1\t0.1\tnan\t0.1\t2\n", "'nan' in column angle");
+  refuses(head + "tuning\tA\tn\t1.5\t0.1\t2\t0.1\t2\n", "r.tsv line 3: the seed '1.5' is not a whole number");
+  refuses(head + "tuning\tA\tn\t1\t0.1\t2\t0.1\t2\n\ntuning\tA\tn\t1\t0.2\t2\t0.1\t2\n", "r.tsv line 5: A, n at seed 1 appears twice");
+}
+
+TEST_CASE("two runs compared: verdicts that changed, counts per seed and the direction of the changes",
+          "[eval][compare]") {
+  std::vector<CaseFigures> before, after;
+  // Twelve tuning cases at seeds 1 and 2: after lowers both numbers by 1-12% on each, and so wins
+  // A (tied with its oracle) where before lost it; B goes the other way at seed 1 only.
+  for (int i = 0; i < 12; ++i) {
+    const std::string mesh = i == 0 ? "A" : i == 1 ? "B" : "M" + std::to_string(i);
+    for (std::uint64_t seed : {1, 2}) {
+      const double shrink = 1 - 0.01 * (i + 1);
+      if (i == 0) {
+        before.push_back(figures("tuning", mesh, seed, 0.110, 5.0, 0.100, 5.0));
+        after.push_back(figures("tuning", mesh, seed, 0.100, 4.5, 0.100, 5.0));
+      } else if (i == 1) {
+        before.push_back(figures("tuning", mesh, seed, 0.090, 4.0, 0.100, 5.0));
+        after.push_back(figures("tuning", mesh, seed, seed == 1 ? 0.101 : 0.089, 3.9, 0.100, 5.0));
+      } else {
+        before.push_back(figures("tuning", mesh, seed, 0.2, 6.0, 0.1, 5.0));
+        after.push_back(figures("tuning", mesh, seed, 0.2 * shrink, 6.0 * shrink, 0.1, 5.0));
+      }
+    }
+  }
+  // A validation case in one run only.
+  before.push_back(figures("validation", "Lonely", 1, 0.1, 4.0, 0.1, 4.0));
+  const std::string report = compareResults(before, after);
+  INFO(report);
+  CHECK_THAT(report, Catch::Contains("## tuning: 12 cases in both runs"));
+  CHECK_THAT(report, Catch::Contains("| won at probe seed 1 | 1 | 1 |"));
+  CHECK_THAT(report, Catch::Contains("| won at probe seed 2 | 1 | 2 |"));
+  CHECK_THAT(report, Catch::Contains("Won before and lost after (seed 1): B, fixed 0.5 AEL random dir. (ratio 0.90 → 1.01)."));
+  CHECK_THAT(report, Catch::Contains("Lost before and won after (seed 1): A, fixed 0.5 AEL random dir. (ratio 1.10 → 1.00)."));
+  CHECK_THAT(report, Catch::Contains("averaged over the 2 shared probe seeds"));
+  // Normal error is lower after on all twelve; RMS on eleven (B's mean change over its seeds is up).
+  CHECK_THAT(report, Catch::Contains("| normal error | 12 | 0 | 0 | -3.06 | 0.002 |"));
+  CHECK_THAT(report, Catch::Contains("| RMS | 11 | 1 | 0 |"));
+  CHECK_THAT(report, Catch::Contains("## validation: 0 cases in both runs"));
+  CHECK_THAT(report, Catch::Contains("Lonely, fixed 0.5 AEL random dir. (before)"));
+  CHECK_THAT(report, Catch::Contains("No case at a probe seed both runs share."));
+}
