@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The denoising evaluation table (issue 5): builds the native release preset if needed and runs
 # eval/denoise_eval, which prints Markdown tables (RMS ×10², mean normal error, time per method).
-#   scripts/eval.sh [--mesh SUBSTRING] [--quick] [--markdown FILE] [--data DIR]
+#   scripts/eval.sh [--set tuning|validation|all] [--mesh SUBSTRING] [--quick] [--markdown FILE] [--results FILE] [--data DIR]
+#   scripts/eval.sh --compare BEFORE AFTER   (two --results files; docs/denoising.md#comparing-two-runs)
+#   (denoise_eval --help lists the rest.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -f build/native-release/CMakeCache.txt ]; then
