@@ -20,11 +20,6 @@ namespace {
 constexpr const char* kMagic = "# denoise_eval results 1";
 constexpr const char* kHeader = "set\tmesh\tnoise\tseed\trms\tangle\tbest_rms\tbest_angle";
 
-double printed(double x, int digits) {
-  const double scale = std::pow(10.0, digits);
-  return std::round(x * scale) / scale;
-}
-
 std::string fixed(double x, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", digits, x);
@@ -44,13 +39,20 @@ std::vector<std::string> splitTabs(const std::string& line) {
 
 }  // namespace
 
-bool won(const CaseFigures& c) {
-  return printed(c.rms, 3) <= printed(c.bestRms, 3) && printed(c.angle, 2) <= printed(c.bestAngle, 2);
+double printed(double x, int digits) {
+  const double scale = std::pow(10.0, digits);
+  return std::round(x * scale) / scale;
 }
 
-double ratio(const CaseFigures& c) {
-  return std::max(printed(c.rms, 3) / std::max(printed(c.bestRms, 3), 1e-12),
-                  printed(c.angle, 2) / std::max(printed(c.bestAngle, 2), 1e-12));
+Verdict verdictOf(const CaseFigures& c) {
+  const double rms = printed(c.rms, 3), angle = printed(c.angle, 2);
+  const double bestRms = printed(c.bestRms, 3), bestAngle = printed(c.bestAngle, 2);
+  Verdict v;
+  v.win = rms <= bestRms && angle <= bestAngle;
+  v.rmsRatio = rms / std::max(bestRms, 1e-12);
+  v.angleRatio = angle / std::max(bestAngle, 1e-12);
+  v.ratio = std::max(v.rmsRatio, v.angleRatio);
+  return v;
 }
 
 void writeResults(std::ostream& out, const std::vector<CaseFigures>& cases) {
@@ -176,9 +178,10 @@ struct Means {
   double logRms = 0, logAngle = 0;
   int n = 0, within = 0;
   void add(const CaseFigures& c) {
-    logRms += std::log(std::max(printed(c.rms, 3) / std::max(printed(c.bestRms, 3), 1e-12), 1e-6));
-    logAngle += std::log(std::max(printed(c.angle, 2) / std::max(printed(c.bestAngle, 2), 1e-12), 1e-6));
-    within += ratio(c) <= 1.25;
+    const Verdict v = verdictOf(c);
+    logRms += std::log(std::max(v.rmsRatio, 1e-6));
+    logAngle += std::log(std::max(v.angleRatio, 1e-6));
+    within += v.ratio <= 1.25;
     ++n;
   }
   std::string text() const {

@@ -20,10 +20,17 @@ struct CaseFigures {
   double bestRms = 0, bestAngle = 0;  // the better of tuned Taubin and the tuned bilateral filter, each number
 };
 
-// The verdict as the scoreboard gives it: figures compared as printed (RMS to 3 decimals, angles
-// to 2), won when both are at or below the better oracle's; the ratio is the larger of ours / it.
-bool won(const CaseFigures& c);
-double ratio(const CaseFigures& c);
+// The verdict as the scoreboard gives it, the one place it is written: figures compared as printed
+// (RMS to 3 decimals, angles to 2), won when both are at or below the better oracle's; each
+// number's ratio is ours / it, and the case's ratio the larger of the two.
+double printed(double x, int digits);
+struct Verdict {
+  bool win = false;
+  double ratio = 0, rmsRatio = 0, angleRatio = 0;
+};
+Verdict verdictOf(const CaseFigures& c);
+inline bool won(const CaseFigures& c) { return verdictOf(c).win; }
+inline double ratio(const CaseFigures& c) { return verdictOf(c).ratio; }
 
 // Tab-separated, one case and seed a line, after a header; numbers with 17 significant digits.
 void writeResults(std::ostream& out, const std::vector<CaseFigures>& cases);

@@ -298,28 +298,21 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
 
 // --- verdicts -------------------------------------------------------------------------------------
 
-// Figures are compared as printed (RMS to 3 decimals, angles to 2): a tie at that precision is a tie.
-double printed(double x, int digits) {
-  const double scale = std::pow(10.0, digits);
-  return std::round(x * scale) / scale;
+// A case's figures as the verdict reads them: ours and, in each number, the better oracle's (the
+// lesser of two figures printed is the lesser figure printed, so the better oracle's raw figure is kept).
+CaseFigures figuresOf(const Case& c, std::uint64_t seed, const Score& ours, const Score& taubin, const Score& bilateral) {
+  return {setName(c.set), c.mesh, c.noise, seed, ours.rms, ours.angle, std::min(taubin.rms, bilateral.rms),
+          std::min(taubin.angle, bilateral.angle)};
 }
 
-struct Verdict {
-  bool win = false;      // both numbers at or below both oracles
-  double ratio = 0;      // the larger of ours / best oracle, over the two numbers
-  double rmsRatio = 0, angleRatio = 0;  // each number's ours / best oracle
-};
-
+// The scoreboard's verdict (compare.hpp: figures compared as printed, a tie at that precision a tie).
 Verdict verdict(const Score& ours, const Score& taubin, const Score& bilateral) {
-  const double rms = printed(ours.rms, 3), angle = printed(ours.angle, 2);
-  const double bestRms = std::min(printed(taubin.rms, 3), printed(bilateral.rms, 3));
-  const double bestAngle = std::min(printed(taubin.angle, 2), printed(bilateral.angle, 2));
-  Verdict v;
-  v.win = rms <= bestRms && angle <= bestAngle;
-  v.rmsRatio = rms / std::max(bestRms, 1e-12);
-  v.angleRatio = angle / std::max(bestAngle, 1e-12);
-  v.ratio = std::max(v.rmsRatio, v.angleRatio);
-  return v;
+  CaseFigures f;
+  f.rms = ours.rms;
+  f.angle = ours.angle;
+  f.bestRms = std::min(taubin.rms, bilateral.rms);
+  f.bestAngle = std::min(taubin.angle, bilateral.angle);
+  return verdictOf(f);
 }
 
 struct Result {
@@ -504,8 +497,7 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
     if (!r->gcn.present()) continue;
     const Score& o = r->ours.front();
     s << "\nAgainst GCN-Denoiser on " << r->c->mesh << ": ours " << pairOf(o) << ", GCN-Denoiser " << pairOf(r->gcn)
-      << (printed(o.rms, 3) <= printed(r->gcn.rms, 3) && printed(o.angle, 2) <= printed(r->gcn.angle, 2) ? " (both at or below)"
-                                                                                                         : " (not both at or below)")
+      << (verdict(o, r->gcn, r->gcn).win ? " (both at or below)" : " (not both at or below)")
       << ".\n";
   }
   return s.str() + "\n";
@@ -814,9 +806,7 @@ int main(int argc, char** argv) {
     std::vector<CaseFigures> figures;
     for (const Result& r : results) {
       for (size_t k = 0; k < seeds.size(); ++k) {
-        const Score& o = r.ours[k];
-        figures.push_back({setName(r.c->set), r.c->mesh, r.c->noise, seeds[k], o.rms, o.angle,
-                           std::min(r.taubin.rms, r.bilateral.rms), std::min(r.taubin.angle, r.bilateral.angle)});
+        figures.push_back(figuresOf(*r.c, seeds[k], r.ours[k], r.taubin, r.bilateral));
       }
     }
     const fs::path tmp = resultsPath + ".tmp";
