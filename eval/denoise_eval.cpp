@@ -298,21 +298,20 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
 
 // --- verdicts -------------------------------------------------------------------------------------
 
-// A case's figures as the verdict reads them: ours and, in each number, the better oracle's (the
-// lesser of two figures printed is the lesser figure printed, so the better oracle's raw figure is kept).
-CaseFigures figuresOf(const Case& c, std::uint64_t seed, const Score& ours, const Score& taubin, const Score& bilateral) {
-  return {setName(c.set), c.mesh, c.noise, seed, ours.rms, ours.angle, std::min(taubin.rms, bilateral.rms),
-          std::min(taubin.angle, bilateral.angle)};
-}
-
-// The scoreboard's verdict (compare.hpp: figures compared as printed, a tie at that precision a tie).
-Verdict verdict(const Score& ours, const Score& taubin, const Score& bilateral) {
+// Ours and, in each number, the better oracle's figure, as the verdict reads them (the lesser of two
+// figures printed is the lesser figure printed, so the better oracle's raw figure is kept).
+CaseFigures figuresOf(const Score& ours, const Score& taubin, const Score& bilateral) {
   CaseFigures f;
   f.rms = ours.rms;
   f.angle = ours.angle;
   f.bestRms = std::min(taubin.rms, bilateral.rms);
   f.bestAngle = std::min(taubin.angle, bilateral.angle);
-  return verdictOf(f);
+  return f;
+}
+
+// The scoreboard's verdict (compare.hpp: figures compared as printed, a tie at that precision a tie).
+Verdict verdict(const Score& ours, const Score& taubin, const Score& bilateral) {
+  return verdictOf(figuresOf(ours, taubin, bilateral));
 }
 
 struct Result {
@@ -806,7 +805,12 @@ int main(int argc, char** argv) {
     std::vector<CaseFigures> figures;
     for (const Result& r : results) {
       for (size_t k = 0; k < seeds.size(); ++k) {
-        figures.push_back(figuresOf(*r.c, seeds[k], r.ours[k], r.taubin, r.bilateral));
+        CaseFigures f = figuresOf(r.ours[k], r.taubin, r.bilateral);
+        f.set = setName(r.c->set);
+        f.mesh = r.c->mesh;
+        f.noise = r.c->noise;
+        f.seed = seeds[k];
+        figures.push_back(std::move(f));
       }
     }
     const fs::path tmp = resultsPath + ".tmp";
