@@ -49,10 +49,16 @@ struct SignedRank {
 };
 SignedRank signedRankTest(const std::vector<double>& differences);
 
+// One mean per group: values[i] belongs to groups[i] (the same length); the means in the groups'
+// sorted order. Cases of one mesh share its shape, so a test over cases counts a mesh that moves
+// with every noise four times; over mesh means, once.
+std::vector<double> groupMeans(const std::vector<std::string>& groups, const std::vector<double>& values);
+
 // The comparison of `after` against `before`, per set, over the (set, mesh, noise) cases both hold,
 // as Markdown: cases won at each seed the two share, the cases whose verdict changed at the first,
 // the geometric mean ratios, and for RMS and normal error the cases that moved each way with the
-// signed-rank test of log(after / before), each case's change averaged over the shared seeds.
+// signed-rank test of log(after / before), each case's change averaged over the shared seeds; then
+// the same test over each mesh's mean change (groupMeans).
 std::string compareResults(const std::vector<CaseFigures>& before, const std::vector<CaseFigures>& after);
 
 }  // namespace geoshift::eval

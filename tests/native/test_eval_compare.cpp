@@ -167,3 +167,36 @@ TEST_CASE("two runs compared: verdicts that changed, counts per seed and the dir
   CHECK_THAT(report, Catch::Contains("Lonely, fixed 0.5 AEL random dir. (before)"));
   CHECK_THAT(report, Catch::Contains("No case at a probe seed both runs share."));
 }
+
+TEST_CASE("group means: one per group, in the groups' order", "[eval][compare]") {
+  const std::vector<double> m = groupMeans({"b", "a", "b", "c", "a", "b"}, {1, 2, 3, 4, 6, 5});
+  REQUIRE(m.size() == 3);
+  CHECK(m[0] == Approx(4.0));  // a: 2, 6
+  CHECK(m[1] == Approx(3.0));  // b: 1, 3, 5
+  CHECK(m[2] == Approx(4.0));  // c
+  CHECK(groupMeans({}, {}).empty());
+  CHECK_THROWS_AS(groupMeans({"a"}, {1, 2}), std::invalid_argument);
+}
+
+TEST_CASE("one mesh that moves with every noise counts once in the test over meshes", "[eval][compare]") {
+  // Mesh Big has eight noises, each 10% lower after; six other meshes one noise each, 1% higher.
+  // Over the 14 cases the eight large drops dominate (W⁺ = 6 × 3.5 = 21 against a mean of 52.5:
+  // z −2.04); over the 7 meshes Big is one drop against six rises (W⁺ = 21 against 14: z +1.26).
+  std::vector<CaseFigures> before, after;
+  for (int i = 0; i < 8; ++i) {
+    const std::string noise = "noise " + std::to_string(i);
+    before.push_back({"tuning", "Big", noise, 1, 0.2, 6.0, 0.1, 5.0});
+    after.push_back({"tuning", "Big", noise, 1, 0.2 * 0.9, 6.0 * 0.9, 0.1, 5.0});
+  }
+  for (int i = 0; i < 6; ++i) {
+    const std::string mesh = "Small " + std::to_string(i);
+    before.push_back(figures("tuning", mesh, 1, 0.2, 6.0, 0.1, 5.0));
+    after.push_back(figures("tuning", mesh, 1, 0.2 * 1.01, 6.0 * 1.01, 0.1, 5.0));
+  }
+  const std::string report = compareResults(before, after);
+  INFO(report);
+  CHECK_THAT(report, Catch::Contains("| RMS | 8 | 6 | 0 | -2.04 | 0.042 |"));
+  CHECK_THAT(report, Catch::Contains("The same test over the 7 meshes"));
+  CHECK_THAT(report, Catch::Contains("| RMS | 1 | 6 | 0 | 1.26 | 0.206 |"));
+  CHECK_THAT(report, Catch::Contains("| normal error | 1 | 6 | 0 | 1.26 | 0.206 |"));
+}
