@@ -177,6 +177,56 @@ std::vector<double> groupMeans(const std::vector<std::string>& groups, const std
   return out;
 }
 
+ShareInterval groupBootstrapShare(const std::vector<std::string>& groups, const std::vector<bool>& won, int resamples,
+                                  std::uint64_t seed) {
+  if (groups.size() != won.size())
+    throw std::invalid_argument("groupBootstrapShare: " + std::to_string(groups.size()) + " groups for " +
+                                std::to_string(won.size()) + " cases");
+  if (resamples < 1) throw std::invalid_argument("groupBootstrapShare: resamples must be >= 1");
+  ShareInterval out;
+  if (groups.empty()) return out;
+  // Per group: cases and cases won.
+  std::map<std::string, std::pair<int, int>> tally;
+  int wins = 0;
+  for (size_t i = 0; i < groups.size(); ++i) {
+    auto& [cases, w] = tally[groups[i]];
+    ++cases;
+    w += won[i];
+    wins += won[i];
+  }
+  std::vector<std::pair<int, int>> g;
+  for (const auto& [name, t] : tally) g.push_back(t);
+  const auto n = static_cast<std::uint64_t>(g.size());
+  out.groups = static_cast<int>(n);
+  out.share = static_cast<double>(wins) / static_cast<double>(groups.size());
+  std::uint64_t state = seed;
+  auto next = [&state]() {  // splitmix64
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  std::vector<double> shares(resamples);
+  for (double& share : shares) {
+    int cases = 0, w = 0;
+    for (std::uint64_t k = 0; k < n; ++k) {
+      const auto& [c, gw] = g[next() % n];  // the modulo's bias is below n / 2^64
+      cases += c;
+      w += gw;
+    }
+    share = static_cast<double>(w) / cases;
+  }
+  std::sort(shares.begin(), shares.end());
+  // The 2.5th and 97.5th percentiles, each the resample at its rank (no interpolation).
+  const auto at = [&](double q) {
+    const auto i = static_cast<size_t>(std::floor(q * (resamples - 1) + 0.5));
+    return shares[std::min(i, shares.size() - 1)];
+  };
+  out.low = at(0.025);
+  out.high = at(0.975);
+  return out;
+}
+
 namespace {
 
 using Key = std::pair<std::string, std::string>;  // mesh, noise

@@ -54,6 +54,18 @@ SignedRank signedRankTest(const std::vector<double>& differences);
 // with every noise four times; over mesh means, once.
 std::vector<double> groupMeans(const std::vector<std::string>& groups, const std::vector<double>& values);
 
+// How far a share of cases won could move with the meshes in the set: a percentile bootstrap over
+// groups (families), each resample drawing as many groups as there are, with replacement, and
+// counting the cases of the drawn groups (docs/denoising.md#the-evaluation). Cases of one family share
+// a shape and move together, so resampling cases alone would read the share as more precise than
+// it is. `resamples` draws from a fixed seed (splitmix64): the same interval on every machine.
+struct ShareInterval {
+  double share = 0, low = 0, high = 0;  // the share won, and the central 95% of the resampled shares
+  int groups = 0;
+};
+ShareInterval groupBootstrapShare(const std::vector<std::string>& groups, const std::vector<bool>& won,
+                                  int resamples = 10000, std::uint64_t seed = 1);
+
 // The comparison of `after` against `before`, per set, over the (set, mesh, noise) cases both hold,
 // as Markdown: cases won at each seed the two share, the cases whose verdict changed at the first,
 // the geometric mean ratios, and for RMS and normal error the cases that moved each way with the

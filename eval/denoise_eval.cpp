@@ -426,8 +426,12 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
   double worst = 0;
   std::string worstCase;
   std::vector<std::string> misses, unstable;
+  std::vector<std::string> families;  // the cases' families and verdicts at the first seed, for the interval
+  std::vector<bool> wonFirst;
   for (const Result* r : rows) {
     const Verdict v = verdict(r->ours.front(), r->taubin, r->bilateral);
+    families.push_back(r->c->family);
+    wonFirst.push_back(v.win);
     std::string wonAt;
     int wins = 0;
     for (size_t k = 0; k < seeds.size(); ++k) {
@@ -468,8 +472,11 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
     s << "| " << category << " | " << c.cases << " | " << c.won << " | " << fixed(c.ratios.rms(), 3) << " | "
       << fixed(c.ratios.angle(), 3) << " |\n";
   s << "\nRMS and normal ratio: geometric means over the cases of ours / the better oracle (below 1: ahead).\n";
+  const ShareInterval interval = groupBootstrapShare(families, wonFirst);
   s << "\n**" << setName(set) << ": won " << wonPerSeed.front() << " of " << rows.size() << "** ("
-    << fixed(100.0 * wonPerSeed.front() / rows.size(), 1) << "%); within 1.25× of the better oracle in both numbers: "
+    << fixed(100.0 * wonPerSeed.front() / rows.size(), 1) << "%; 95% interval " << fixed(100.0 * interval.low, 0) << "–"
+    << fixed(100.0 * interval.high, 0) << "% over the set's " << interval.groups
+    << " families, resampled); within 1.25× of the better oracle in both numbers: "
     << within << " of " << rows.size() << "; worst ratio " << fixed(worst, 2) << " (" << worstCase
     << "); geometric mean ratio RMS " << fixed(ratiosPerSeed.front().rms(), 3) << ", normal error "
     << fixed(ratiosPerSeed.front().angle(), 3) << ".\n";

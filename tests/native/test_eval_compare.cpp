@@ -1,6 +1,7 @@
 // eval/compare.hpp: the comparison of two denoise_eval runs (docs/denoising.md#comparing-two-runs).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -199,4 +200,79 @@ TEST_CASE("one mesh that moves with every noise counts once in the test over mes
   CHECK_THAT(report, Catch::Contains("The same test over the 7 meshes"));
   CHECK_THAT(report, Catch::Contains("| RMS | 1 | 6 | 0 | 1.26 | 0.206 |"));
   CHECK_THAT(report, Catch::Contains("| normal error | 1 | 6 | 0 | 1.26 | 0.206 |"));
+}
+
+TEST_CASE("the bootstrap over families: a share whose wins sit in whole families is less certain", "[eval][compare]") {
+  // Ten families of four cases, half the cases won either way: in whole families (five won, five
+  // lost) the share moves with which families are drawn; spread evenly (two of four in each) it
+  // cannot move at all.
+  std::vector<std::string> groups;
+  std::vector<bool> whole, even;
+  for (int f = 0; f < 10; ++f)
+    for (int c = 0; c < 4; ++c) {
+      groups.push_back("family " + std::to_string(f));
+      whole.push_back(f < 5);
+      even.push_back(c < 2);
+    }
+  const ShareInterval a = groupBootstrapShare(groups, whole), b = groupBootstrapShare(groups, even);
+  CHECK(a.groups == 10);
+  CHECK(a.share == 0.5);
+  CHECK(a.low < 0.25);
+  CHECK(a.high > 0.75);
+  CHECK(b.share == 0.5);
+  CHECK(b.low == 0.5);
+  CHECK(b.high == 0.5);
+  // All won: nothing to move.
+  const ShareInterval all = groupBootstrapShare(groups, std::vector<bool>(groups.size(), true));
+  CHECK(all.low == 1.0);
+  CHECK(all.high == 1.0);
+  // The same seed, the same interval; another seed, nearly the same.
+  const ShareInterval again = groupBootstrapShare(groups, whole);
+  CHECK(again.low == a.low);
+  CHECK(again.high == a.high);
+  CHECK(groupBootstrapShare({}, {}).groups == 0);
+  CHECK_THROWS_AS(groupBootstrapShare({"a"}, {true, false}), std::invalid_argument);
+  CHECK_THROWS_AS(groupBootstrapShare({"a"}, {true}, 0), std::invalid_argument);
+}
+
+TEST_CASE("the bootstrap over families matches the exact distribution of every draw", "[eval][compare]") {
+  // Four families (cases, won): (3, 3), (2, 0), (4, 1), (1, 1). Every one of the 4^4 ordered draws is
+  // equally likely; the share of each is the brute-force reference for the resampled shares.
+  const std::vector<std::pair<int, int>> family = {{3, 3}, {2, 0}, {4, 1}, {1, 1}};
+  std::vector<std::string> groups;
+  std::vector<bool> won;
+  for (size_t f = 0; f < family.size(); ++f)
+    for (int c = 0; c < family[f].first; ++c) {
+      groups.push_back(std::string(1, static_cast<char>('a' + f)));
+      won.push_back(c < family[f].second);
+    }
+  std::vector<double> exact;
+  for (int d = 0; d < 256; ++d) {
+    int cases = 0, w = 0;
+    for (int k = 0; k < 4; ++k) {
+      const auto& [c, gw] = family[(d >> (2 * k)) & 3];
+      cases += c;
+      w += gw;
+    }
+    exact.push_back(static_cast<double>(w) / cases);
+  }
+  std::sort(exact.begin(), exact.end());
+  // The exact quantiles: the smallest share whose probability of a share at or below it reaches q.
+  auto quantile = [&](double q) {
+    for (size_t i = 0; i < exact.size(); ++i) {
+      const size_t last = std::upper_bound(exact.begin(), exact.end(), exact[i]) - exact.begin();
+      const double cdf = static_cast<double>(last) / exact.size();
+      if (cdf >= q) {
+        // Far enough from the jump that 200,000 resamples cannot land on its other side.
+        REQUIRE(std::abs(cdf - q) > 0.003);
+        REQUIRE(std::abs(static_cast<double>(i) / exact.size() - q) > 0.003);
+        return exact[i];
+      }
+    }
+    return exact.back();
+  };
+  const ShareInterval r = groupBootstrapShare(groups, won, 200000, 7);
+  CHECK(r.share == Approx(5.0 / 10));
+  CHECK(r.low == Approx(quantile(0.025)));
+  CHECK(r.high == Approx(quantile(0.975)));
 }
