@@ -542,7 +542,8 @@ int usage(const char* error) {
          "  --markdown FILE    also write the report to FILE\n"
          "  --results FILE     also write every case's figures at every probe seed to FILE, for --compare\n"
          "  --compare BEFORE AFTER   no evaluation: compare two --results files case by case (verdicts that\n"
-         "                     changed, ratios, and a signed-rank test of the changes in RMS and normal error)\n"
+         "                     changed, ratios, and a signed-rank test of the changes in RMS and normal error,\n"
+         "                     over the cases and over the meshes)\n"
          "  --data DIR         the shared data folder (default ../shared/data of the repository)\n";
   return error ? 2 : 0;
 }
