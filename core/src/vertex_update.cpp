@@ -46,17 +46,19 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   // normals do not change between iterations. The per-call arrays are left uninitialised and first
   // written by the parallel loops: filled by the calling thread alone (with the page faults of their
   // fresh memory), they were about a sixth of a 2-thread denoise's work (docs/denoising.md#speed-and-memory).
+  // A face without a target pulls on nothing: it is left out of its corners' lists below, and
+  // every other face weighs 1, or its area when areaWeighted (then kept beside the planes).
   struct Plane {
     Vec3 n;
-    double offset, weight;
+    double offset;
   };
   const std::unique_ptr<Plane[]> plane(new Plane[nf]);
+  const std::unique_ptr<double[]> weight(options.areaWeighted ? new double[nf] : nullptr);
   // A face's weight and target plane offset at positions p, so that a corner x_v is pulled by
   // (n·c − n·x_v) n; `cross` is its cross product there.
   auto setPlane = [&](int f, const std::vector<Vec3>& p, const Vec3& cross) {
     const Face& t = mesh.face(f);
-    // A face without a target pulls on nothing: weight 0.
-    plane[f].weight = plane[f].n.squaredNorm() == 0 ? 0.0 : options.areaWeighted ? 0.5 * cross.norm() : 1.0;
+    if (weight) weight[f] = 0.5 * cross.norm();
     plane[f].offset = plane[f].n.dot(p[t[0]] + p[t[1]] + p[t[2]]) * (1.0 / 3);  // no division: it stalled the loop
   };
   const std::unique_ptr<int[]> badStamp(new int[nf]);  // round in which a face was last queued, to queue it once
@@ -89,10 +91,29 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   VertexUpdateResult result;
   // Vec3's default constructor writes nothing: these are first written by the loops below.
   std::vector<Vec3> x(nv), candidate(nv), step(nv);
-  const std::unique_ptr<char[]> pinned(new char[nv]);
+  // Per vertex, the faces it gathers over: those with a target, in the mesh's counter-clockwise
+  // order from its first half-edge (a fixed order, so the sums, and so the results, do not depend
+  // on the threads), none for a pinned vertex. Read as a list, the faces' planes are independent
+  // loads; walking the half-edges every iteration made each wait on the one before
+  // (docs/denoising.md#speed-and-memory).
+  const std::unique_ptr<int[]> firstFace(new int[nv + 1]);
   parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
     x[v] = mesh.position(v);
-    pinned[v] = mesh.isIsolated(v) || (options.fixedBoundary && mesh.isBoundaryVertex(v));
+    int count = 0;
+    if (!mesh.isIsolated(v) && !(options.fixedBoundary && mesh.isBoundaryVertex(v)))
+      mesh.forEachOutgoing(v, [&](int h) { count += plane[Mesh::faceOf(h)].n.squaredNorm() != 0; });
+    firstFace[v + 1] = count;
+  });
+  firstFace[0] = 0;
+  for (int v = 0; v < nv; ++v) firstFace[v + 1] += firstFace[v];
+  const std::unique_ptr<int[]> gatherFace(new int[firstFace[nv]]);
+  parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
+    int at = firstFace[v];
+    if (at == firstFace[v + 1]) return;
+    mesh.forEachOutgoing(v, [&](int h) {
+      const int f = Mesh::faceOf(h);
+      if (plane[f].n.squaredNorm() != 0) gatherFace[at++] = f;
+    });
   });
   const std::unique_ptr<char[]> bad(new char[nf]);
   const std::unique_ptr<double[]> scale(new double[nv]);
@@ -115,18 +136,26 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
 
   for (int it = 0; it < options.iterations; ++it) {
     progress.step(static_cast<double>(it) / options.iterations, "vertex update");
-    // Each vertex gathers over its faces in the mesh's counter-clockwise order from its first
-    // half-edge: a fixed order, so the sums (and so the results) do not depend on the threads.
     parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
       Vec3 sum = Vec3::Zero();
       double wsum = 0;
       const Vec3 xv = x[v];
-      mesh.forEachOutgoing(v, [&](int h) {
-        const Plane& p = plane[Mesh::faceOf(h)];
-        sum += (p.weight * (p.offset - p.n.dot(xv))) * p.n;
-        wsum += p.weight;
-      });
-      step[v] = !pinned[v] && wsum > 0 ? Vec3(sum * (1.0 / wsum)) : Vec3::Zero();
+      const int begin = firstFace[v], end = firstFace[v + 1];
+      if (weight) {
+        for (int i = begin; i < end; ++i) {
+          const int f = gatherFace[i];
+          const Plane& p = plane[f];
+          sum += (weight[f] * (p.offset - p.n.dot(xv))) * p.n;
+          wsum += weight[f];
+        }
+      } else {
+        for (int i = begin; i < end; ++i) {
+          const Plane& p = plane[gatherFace[i]];
+          sum += (p.offset - p.n.dot(xv)) * p.n;
+        }
+        wsum = end - begin;
+      }
+      step[v] = wsum > 0 ? Vec3(sum * (1.0 / wsum)) : Vec3::Zero();
       scale[v] = 1.0;
       candidate[v] = xv + step[v];
     });

@@ -154,6 +154,45 @@ TEST_CASE("fixed boundary keeps the border vertices in place", "[vertex_update][
   CHECK(moved > 0);
 }
 
+TEST_CASE("one iteration is the mean pull of a vertex's faces, faces without a target left out", "[vertex_update]") {
+  // Brute force over all faces in index order against the update's per-vertex lists: an open grid
+  // (boundary vertices and their fans), a few faces with no target, with and without area weights.
+  const bool area = GENERATE(false, true);
+  const Mesh m = noisy(shapes::grid(10, 0.3), 0.15);
+  std::vector<Vec3> target = faceNormals(m);
+  for (Vec3& n : target) n = (n + Vec3(0.05, -0.03, 0.0)).normalized();
+  // No target for a few faces and for every face around one interior vertex, which then stays.
+  const int bare = 55;
+  REQUIRE(!m.isBoundaryVertex(bare));
+  m.forEachOutgoing(bare, [&](int h) { target[Mesh::faceOf(h)] = Vec3::Zero(); });
+  for (int f : {0, 7, 90}) target[f] = Vec3::Zero();
+  VertexUpdateOptions o;
+  o.iterations = 1;
+  o.areaWeighted = area;
+  const VertexUpdateResult r = updateVertices(m, target, o);
+  REQUIRE(r.limitedSteps == 0);  // no step shortened: the plain formula applies everywhere
+  std::vector<Vec3> sum(m.vertexCount(), Vec3::Zero());
+  std::vector<double> wsum(m.vertexCount(), 0.0);
+  for (int f = 0; f < m.faceCount(); ++f) {
+    if (target[f] == Vec3::Zero()) continue;
+    const Face& t = m.face(f);
+    const Vec3 c = (m.position(t[0]) + m.position(t[1]) + m.position(t[2])) / 3;
+    const double w = area ? 0.5 * faceCross(m, f).norm() : 1.0;
+    for (int v : t) {
+      sum[v] += w * target[f].dot(c - m.position(v)) * target[f];
+      wsum[v] += w;
+    }
+  }
+  for (int v = 0; v < m.vertexCount(); ++v) {
+    const Vec3 expected = wsum[v] > 0 ? Vec3(m.position(v) + sum[v] / wsum[v]) : m.position(v);
+    INFO("vertex " << v);
+    CHECK((r.positions[v] - expected).norm() <= 1e-12);
+  }
+  CHECK(wsum[bare] == 0);
+  CHECK(r.positions[bare] == m.position(bare));
+  CHECK(r.maxDisplacement > 0);
+}
+
 TEST_CASE("vertex update rejects bad input and honours cancel", "[vertex_update][input]") {
   const Mesh m = build(shapes::icosphere(2));
   std::vector<Vec3> n = faceNormals(m);
