@@ -200,7 +200,7 @@ struct Ranking {
 // would have run are half the cost (docs/denoising.md#the-default-pipeline). Every score is kept
 // (its sums), so that the noise level can be refined afterwards and the candidates ranked again.
 class CandidateRace {
-  static constexpr double kTolerance = 0.002, kRaceMargin = 0.005;
+  static constexpr double kTolerance = 0.0015, kRaceMargin = 0.005;
 
  public:
   CandidateRace(const DenoiseOptions& o, const RiskEstimate& risk, const Ranking& rank, DenoiseResult& result)
