@@ -197,8 +197,9 @@ struct Ranking {
 // did not lower its rank by kTolerance of the noise's, and, once it has run `patience` passes, as
 // soon as its best rank is kRaceMargin of the noise's above the leader's: it is unlikely to catch
 // up, and a lead smaller than that is within what one probe can tell apart anyway. The passes it
-// would have run are half the cost (docs/denoising.md#the-default-pipeline). Every score is kept
-// (its sums), so that the noise level can be refined afterwards and the candidates ranked again.
+// would have run are half the cost (docs/denoising.md#the-race, with the figures behind kTolerance).
+// Every score is kept (its sums), so that the noise level can be refined afterwards and the
+// candidates ranked again.
 class CandidateRace {
   static constexpr double kTolerance = 0.0015, kRaceMargin = 0.005;
 

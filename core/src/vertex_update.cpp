@@ -96,12 +96,13 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   // on the threads), none for a pinned vertex. Read as a list, the faces' planes are independent
   // loads; walking the half-edges every iteration made each wait on the one before
   // (docs/denoising.md#speed-and-memory).
+  auto hasTarget = [&](int f) { return plane[f].n.squaredNorm() != 0; };
   const std::unique_ptr<int[]> firstFace(new int[nv + 1]);
   parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
     x[v] = mesh.position(v);
     int count = 0;
     if (!mesh.isIsolated(v) && !(options.fixedBoundary && mesh.isBoundaryVertex(v)))
-      mesh.forEachOutgoing(v, [&](int h) { count += plane[Mesh::faceOf(h)].n.squaredNorm() != 0; });
+      mesh.forEachOutgoing(v, [&](int h) { count += hasTarget(Mesh::faceOf(h)); });
     firstFace[v + 1] = count;
   });
   firstFace[0] = 0;
@@ -112,7 +113,7 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     if (at == firstFace[v + 1]) return;
     mesh.forEachOutgoing(v, [&](int h) {
       const int f = Mesh::faceOf(h);
-      if (plane[f].n.squaredNorm() != 0) gatherFace[at++] = f;
+      if (hasTarget(f)) gatherFace[at++] = f;
     });
   });
   const std::unique_ptr<char[]> bad(new char[nf]);
