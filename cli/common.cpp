@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "allocation.hpp"
 #include "commands.hpp"
 #include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
@@ -31,6 +32,7 @@ Document load(const std::string& path) {
 }
 
 void save(const Document& doc, const std::string& path) {
+  releaseKeptArrays();  // none held while the result is written (allocation.cpp)
   for (const std::string& w : writeDocument(doc, path)) std::cerr << "geoshift: warning: " << w << "\n";
 }
 
