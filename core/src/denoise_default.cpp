@@ -139,6 +139,9 @@ class Passes {
     update.parallel = parallel_;
     work_.positions() = start;
     update.referenceNormals = referenceNormalsOf(work_);
+    // Every pass of every start gathers over the same lists (the shift gives every face a target
+    // but a degenerate one): listed once, at the first pass (docs/denoising.md#speed-and-memory).
+    update.plan = &plan_;
     return update;
   }
 
@@ -159,6 +162,7 @@ class Passes {
     // The track's positions move into the mesh (the update returns new ones): one copy fewer held
     // while the update runs, which is when memory peaks.
     work_.positions() = std::move(t.positions);
+    if (plan_.firstFace.empty()) plan_ = planVertexUpdate(work_, *t.update);
     std::vector<Vec3> targets = shiftFaceNormals(hoods_, work_, rangeBandwidth, parallel_);
     VertexUpdateResult u = updateVertices(work_, std::move(targets), *t.update);
     result.limitedSteps += u.limitedSteps;
@@ -180,6 +184,7 @@ class Passes {
 
   TaubinOptions taubin_, candidateTaubin_;
   FaceNeighborhoods hoods_;
+  VertexUpdatePlan plan_;
 };
 
 // What candidates are ranked by: their position risk over σ², so that the race's tolerances are

@@ -24,6 +24,42 @@ std::string vecText(const Vec3& v) {
   return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
 }
 
+// Per vertex, the faces it gathers over (VertexUpdatePlan): those with a target, in the mesh's
+// counter-clockwise order from its first half-edge (a fixed order, so the sums, and so the
+// results, do not depend on the threads), none for a vertex that does not move. Read as a list,
+// the faces' planes are independent loads; walking the half-edges every iteration made each wait
+// on the one before (docs/denoising.md#speed-and-memory). `first` (nv + 1 entries) gets the lists'
+// starts; `allocate(n)` returns the array of n entries they are written to.
+template <class HasTarget, class Allocate>
+auto listGatherFaces(const Mesh& mesh, bool fixedBoundary, const ParallelOptions& par, HasTarget&& hasTarget,
+                     int* first, Allocate&& allocate) {
+  const int nv = mesh.vertexCount();
+  const Progress quiet;
+  parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
+    int count = 0;
+    if (!mesh.isIsolated(v) && !(fixedBoundary && mesh.isBoundaryVertex(v)))
+      mesh.forEachOutgoing(v, [&](int h) { count += hasTarget(Mesh::faceOf(h)); });
+    first[v + 1] = count;
+  });
+  first[0] = 0;
+  for (int v = 0; v < nv; ++v) first[v + 1] += first[v];
+  auto faces = allocate(first[nv]);
+  int* gather = nullptr;
+  if constexpr (requires { faces.data(); })
+    gather = faces.data();
+  else
+    gather = faces.get();
+  parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
+    int at = first[v];
+    if (at == first[v + 1]) return;
+    mesh.forEachOutgoing(v, [&](int h) {
+      const int f = Mesh::faceOf(h);
+      if (hasTarget(f)) gather[at++] = f;
+    });
+  });
+  return faces;
+}
+
 }  // namespace
 
 VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNormals,
@@ -64,11 +100,12 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   const std::unique_ptr<int[]> badStamp(new int[nf]);  // round in which a face was last queued, to queue it once
   // Per face in one loop: its unit target, the first iteration's plane (later ones are set by the
   // guard's checks) and its stamp.
-  std::atomic<bool> nonFinite{false};
+  std::atomic<bool> nonFinite{false}, targetless{false};
   parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
     const Vec3& n = targetNormals[f];
     if (!n.allFinite()) nonFinite.store(true, std::memory_order_relaxed);
     const double len = n.norm();
+    if (!(len > 0)) targetless.store(true, std::memory_order_relaxed);
     plane[f].n = len > 0 ? Vec3(n / len) : Vec3::Zero();
     setPlane(f, mesh.positions(), crossOf(mesh.positions(), mesh.face(f)));
     badStamp[f] = -1;
@@ -91,31 +128,24 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   VertexUpdateResult result;
   // Vec3's default constructor writes nothing: these are first written by the loops below.
   std::vector<Vec3> x(nv), candidate(nv), step(nv);
-  // Per vertex, the faces it gathers over: those with a target, in the mesh's counter-clockwise
-  // order from its first half-edge (a fixed order, so the sums, and so the results, do not depend
-  // on the threads), none for a pinned vertex. Read as a list, the faces' planes are independent
-  // loads; walking the half-edges every iteration made each wait on the one before
-  // (docs/denoising.md#speed-and-memory).
+  const VertexUpdatePlan* plan = options.plan;
+  if (plan && (plan->vertexCount != nv || plan->faceCount != nf || plan->fixedBoundary != options.fixedBoundary ||
+               static_cast<int>(plan->firstFace.size()) != nv + 1))
+    throw InputError("vertex update: the plan was made for " + std::to_string(plan->vertexCount) + " vertices and " +
+                     std::to_string(plan->faceCount) + " faces" + (plan->fixedBoundary ? " with" : " without") +
+                     " fixed boundary, not for this mesh (" + std::to_string(nv) + " vertices, " + std::to_string(nf) +
+                     " faces)" + (options.fixedBoundary ? " with it" : " without it"));
+  if (targetless) plan = nullptr;  // the plan lists every face: the lists are built for this call
   auto hasTarget = [&](int f) { return plane[f].n.squaredNorm() != 0; };
-  const std::unique_ptr<int[]> firstFace(new int[nv + 1]);
-  parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
-    x[v] = mesh.position(v);
-    int count = 0;
-    if (!mesh.isIsolated(v) && !(options.fixedBoundary && mesh.isBoundaryVertex(v)))
-      mesh.forEachOutgoing(v, [&](int h) { count += hasTarget(Mesh::faceOf(h)); });
-    firstFace[v + 1] = count;
-  });
-  firstFace[0] = 0;
-  for (int v = 0; v < nv; ++v) firstFace[v + 1] += firstFace[v];
-  const std::unique_ptr<int[]> gatherFace(new int[firstFace[nv]]);
-  parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) {
-    int at = firstFace[v];
-    if (at == firstFace[v + 1]) return;
-    mesh.forEachOutgoing(v, [&](int h) {
-      const int f = Mesh::faceOf(h);
-      if (hasTarget(f)) gatherFace[at++] = f;
-    });
-  });
+  parallelFor(nv, par, quiet, "", 0, 1, [&](int v, int) { x[v] = mesh.position(v); });
+  std::unique_ptr<int[]> ownFirst, ownGather;
+  if (!plan) {
+    ownFirst.reset(new int[nv + 1]);
+    ownGather = listGatherFaces(mesh, options.fixedBoundary, par, hasTarget, ownFirst.get(),
+                                [](int n) { return std::unique_ptr<int[]>(new int[n]); });
+  }
+  const int* firstFace = plan ? plan->firstFace.data() : ownFirst.get();
+  const int* gatherFace = plan ? plan->gatherFace.data() : ownGather.get();
   const std::unique_ptr<char[]> bad(new char[nf]);
   const std::unique_ptr<double[]> scale(new double[nv]);
   std::vector<char> halvedThisRound(nv);
@@ -211,6 +241,19 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   for (double d : farthest) result.maxDisplacement = std::max(result.maxDisplacement, std::sqrt(d));
   result.positions = std::move(x);
   return result;
+}
+
+VertexUpdatePlan planVertexUpdate(const Mesh& mesh, const VertexUpdateOptions& options) {
+  VertexUpdatePlan plan;
+  plan.vertexCount = mesh.vertexCount();
+  plan.faceCount = mesh.faceCount();
+  plan.fixedBoundary = options.fixedBoundary;
+  plan.firstFace.resize(plan.vertexCount + 1);
+  ParallelOptions par = options.parallel;
+  par.chunk = 1024;
+  plan.gatherFace = listGatherFaces(mesh, options.fixedBoundary, par, [](int) { return true; }, plan.firstFace.data(),
+                                    [](int n) { return std::vector<int>(n); });
+  return plan;
 }
 
 std::vector<Eigen::Vector3f> referenceNormalsOf(const Mesh& mesh) {

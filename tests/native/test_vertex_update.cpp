@@ -270,3 +270,45 @@ TEST_CASE("vertex update gives the same result on any number of threads", "[vert
   o.parallel.threads = 4;
   CHECK_THAT(test::errorOf([&] { updateVertices(m, target, o); }), Catch::Contains("face 17 "));
 }
+
+TEST_CASE("a plan made once gives what the lists built per call give", "[vertex_update][plan]") {
+  // An open grid (a boundary, with and without fixed boundary) and a closed sphere, with tangent
+  // targets that keep the flip guard busy; then a face without a target, where the plan must be
+  // set aside (it lists every face), and plans for another mesh or boundary rule, refused.
+  const bool fixed = GENERATE(false, true);
+  for (const Mesh& m : {noisy(shapes::grid(14, 0.3), 0.4), noisy(shapes::icosphere(3), 0.5)}) {
+    std::vector<Vec3> target = faceNormals(m);
+    for (Vec3& n : target) n = (n + 0.6 * n.cross(Vec3(0.3, 0.5, 0.8))).eval();
+    VertexUpdateOptions o;
+    o.iterations = 8;
+    o.fixedBoundary = fixed;
+    o.flipGuard = FlipGuard::InputOrTarget;
+    const VertexUpdatePlan plan = planVertexUpdate(m, o);
+    CHECK(plan.firstFace.back() == static_cast<int>(plan.gatherFace.size()));
+    const VertexUpdateResult own = updateVertices(m, target, o);
+    REQUIRE(own.limitedSteps > 0);
+    o.plan = &plan;
+    for (int threads : {1, 3}) {
+      o.parallel.threads = threads;
+      const VertexUpdateResult planned = updateVertices(m, target, o);
+      INFO(threads << " threads, fixed boundary " << fixed);
+      CHECK(planned.positions == own.positions);
+      CHECK(planned.limitedSteps == own.limitedSteps);
+    }
+    // A face without a target: the plan would let it weigh in the vertices' means.
+    target[5] = Vec3::Zero();
+    o.plan = nullptr;
+    const VertexUpdateResult ownBare = updateVertices(m, target, o);
+    o.plan = &plan;
+    CHECK(updateVertices(m, target, o).positions == ownBare.positions);
+    CHECK(ownBare.positions != own.positions);
+    // Made for the other boundary rule, or for another mesh.
+    VertexUpdateOptions other = o;
+    other.fixedBoundary = !fixed;
+    CHECK_THAT(test::errorOf([&] { updateVertices(m, target, other); }), Catch::Contains("the plan was made for"));
+    const Mesh small = build(shapes::icosphere(1));
+    other = o;
+    CHECK_THAT(test::errorOf([&] { updateVertices(small, faceNormals(small), other); }),
+               Catch::Contains("not for this mesh (42 vertices, 80 faces)"));
+  }
+}

@@ -15,6 +15,8 @@ enum class FlipGuard {
   InputOrTarget,   // its input or its target normal: folds in noisy input may unfold
 };
 
+struct VertexUpdatePlan;
+
 struct VertexUpdateOptions {
   int iterations = 20;
   // Weigh each face's pull by its current area (normalised by the sum of the areas) instead of
@@ -30,6 +32,20 @@ struct VertexUpdateOptions {
   std::vector<Eigen::Vector3f> referenceNormals;
   // Threads of the per-face and per-vertex loops; results do not depend on them.
   ParallelOptions parallel;
+  // For a caller that updates the same mesh many times (a denoiser's passes): the faces each vertex
+  // gathers over, listed once by planVertexUpdate for this mesh and fixedBoundary. Used when every
+  // face has a target (the lists are then the same as a call without it builds); else, or when
+  // null, the lists are built for the call. Not owned.
+  const VertexUpdatePlan* plan = nullptr;
+};
+
+// The faces each vertex's update gathers over when every face has a target: vertex v's are
+// gatherFace[firstFace[v] .. firstFace[v + 1]), in the mesh's counter-clockwise order from its first
+// half-edge; none for an isolated vertex, nor for a boundary vertex with fixedBoundary.
+struct VertexUpdatePlan {
+  int vertexCount = 0, faceCount = 0;
+  bool fixedBoundary = false;
+  std::vector<int> firstFace, gatherFace;
 };
 
 struct VertexUpdateResult {
@@ -59,12 +75,16 @@ std::vector<Eigen::Vector3f> referenceNormalsOf(const Mesh& mesh);
 
 // Preconditions: targetNormals has one entry per face. Entries are normalised here; a zero vector
 // means the face pulls on nothing. Throws InputError when the count is wrong, an entry is not
-// finite (naming the face) or iterations < 0. Throws Cancelled through `progress`.
+// finite (naming the face), iterations < 0 or options.plan was made for another mesh or
+// fixedBoundary. Throws Cancelled through `progress`.
 // targetNormals is taken by value: a caller done with its targets moves them in and they are
 // normalised in place.
 VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNormals,
                                   const VertexUpdateOptions& options = {},
                                   const Progress& progress = {});
+
+// The lists updateVertices builds for every call, built once (options: fixedBoundary and parallel).
+VertexUpdatePlan planVertexUpdate(const Mesh& mesh, const VertexUpdateOptions& options = {});
 
 // Face normals from filtered vertex normals: the normalised mean of each face's three vertex
 // normals (the rule of the paper's §4.1). Where the three cancel out, the face's own geometric
