@@ -10,6 +10,8 @@
 #include <random>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include "allocation.hpp"
 
 using geoshift::cli::keptArrays;
@@ -24,6 +26,16 @@ char* newArray(std::size_t size) {
   char* p = new char[size];
   asm volatile("" : : "r"(p) : "memory");
   return p;
+}
+
+// Page faults taken while an array is written through: near none for pages already resident.
+long faultsWriting(char* p, std::size_t size, char value) {
+  rusage before{}, after{};
+  getrusage(RUSAGE_SELF, &before);
+  std::memset(p, value, size);
+  asm volatile("" : : "r"(p) : "memory");
+  getrusage(RUSAGE_SELF, &after);
+  return after.ru_minflt - before.ru_minflt;
 }
 
 bool withinHighWater() {
@@ -56,6 +68,7 @@ TEST_CASE("kept arrays: a size asked for twice is kept and handed out again", "[
   CHECK(static_cast<void*>(third) == static_cast<void*>(second));  // the kept array, with what it held
   CHECK(third[size - 1] == 2);
   CHECK(keptArrays().kept == 0);
+  CHECK(faultsWriting(third, size, 3) < 16);  // its pages are resident: 768 without the reuse
 
   // Not for a request more than 1/16 larger: that one is fresh, and the kept array goes to make room.
   delete[] third;
@@ -64,6 +77,35 @@ TEST_CASE("kept arrays: a size asked for twice is kept and handed out again", "[
   CHECK(keptArrays().kept == 0);
   CHECK(withinHighWater());
   delete[] larger;
+  releaseKeptArrays();
+  CHECK(keptArrays().kept == 0);
+}
+
+TEST_CASE("kept arrays: a request no kept array holds takes the pages of several", "[cli][allocation]") {
+  if (!keptArrays().enabled) {
+    WARN("this build keeps no arrays (AddressSanitizer, or no glibc): nothing to test");
+    return;
+  }
+  releaseKeptArrays();
+  const std::size_t size = 2 * kMB + 12345;  // a size nothing else in this program asks for
+  for (int round = 0; round < 2; ++round) {  // asked for four times: both kept
+    char* a = newArray(size);
+    char* b = newArray(size);
+    std::memset(a, 1, size);
+    std::memset(b, 2, size);
+    delete[] a;
+    delete[] b;
+  }
+  const auto before = keptArrays();
+  REQUIRE(before.kept >= 2 * size);
+  const std::size_t larger = size + size / 2;  // more than either holds, less than both
+  char* joined = newArray(larger);
+  const auto after = keptArrays();
+  CHECK(after.kept + larger <= before.kept);  // taken from the kept arrays ...
+  CHECK(after.inUse + after.kept <= after.mostInUse);
+  CHECK(faultsWriting(joined, larger, 5) < 16);  // ... with their resident pages
+  CHECK(std::all_of(joined, joined + larger, [](char c) { return c == 5; }));
+  delete[] joined;
   releaseKeptArrays();
   CHECK(keptArrays().kept == 0);
 }
