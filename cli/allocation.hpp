@@ -7,7 +7,7 @@ namespace geoshift::cli {
 
 // The arrays of 1 MB and more that the CLI keeps for reuse (allocation.cpp): whether it keeps any
 // (not under AddressSanitizer, nor without glibc), the bytes kept, those in use and the most ever in
-// use at once (glibc's usable sizes).
+// use at once (bytes of their mappings, headers included).
 struct KeptArrays {
   bool enabled = false;
   std::size_t kept = 0, inUse = 0, mostInUse = 0;
