@@ -116,13 +116,33 @@ Range take(int i) {  // with keptLock held
   return r;
 }
 
+void release(Range r) { munmap(r.p, r.bytes); }
+
 void keep(Range r) {  // with keptLock held
-  if (keptCount == kSlots) {
-    const Range oldest = take(0);
-    munmap(oldest.p, oldest.bytes);
-  }
+  if (keptCount == kSlots) release(take(0));
   kept[keptCount++] = r;
   keptBytes += r.bytes;
+}
+
+// What is left of kept mapping r once its first `used` bytes are taken: kept if it can hold a large
+// array itself (a mapping is cut at a page boundary like any other), else returned.
+void keepRest(Range r, std::size_t used) {  // with keptLock held
+  if (r.bytes == used) return;
+  const Range rest{r.p + used, r.bytes - used};
+  if (rest.bytes >= mappingFor(kLarge))
+    keep(rest);
+  else
+    release(rest);
+}
+
+// Room for `bytes` more in use within the high-water mark: kept mappings go, oldest first.
+void makeRoom(std::size_t bytes) {  // with keptLock held
+  while (keptCount > 0 && inUse + keptBytes + bytes > mostInUse) release(take(0));
+}
+
+void nowInUse(std::size_t bytes) {  // with keptLock held
+  inUse += bytes;
+  mostInUse = std::max(mostInUse, inUse);
 }
 
 void* place(char* mapping, std::size_t bytes) {
@@ -136,22 +156,14 @@ void* allocateLarge(std::size_t size) {
   {
     const std::lock_guard<std::mutex> hold(keptLock);
     count(bytes);
-    // The smallest kept mapping that holds it: its first pages, the rest kept if it can hold a
-    // large array itself (a mapping is cut at a page boundary like any other).
+    // The smallest kept mapping that holds it: its first pages.
     int best = -1;
     for (int i = 0; i < keptCount; ++i)
       if (kept[i].bytes >= bytes && (best < 0 || kept[i].bytes < kept[best].bytes)) best = i;
     if (best >= 0) {
       const Range r = take(best);
-      if (r.bytes > bytes) {
-        const Range rest{r.p + bytes, r.bytes - bytes};
-        if (rest.bytes >= mappingFor(kLarge))
-          keep(rest);
-        else
-          munmap(rest.p, rest.bytes);
-      }
-      inUse += bytes;
-      mostInUse = std::max(mostInUse, inUse);
+      keepRest(r, bytes);
+      nowInUse(bytes);
       return place(r.p, bytes);
     }
     // No kept mapping holds it, but together they do: their pages are moved into one fresh range
@@ -171,33 +183,17 @@ void* allocateLarge(std::size_t size) {
             keep(r);  // not movable (it spans two of the kernel's areas): the rest of the range is fresh
             break;
           }
-          if (r.bytes > n) {
-            const Range rest{r.p + n, r.bytes - n};
-            if (rest.bytes >= mappingFor(kLarge))
-              keep(rest);
-            else
-              munmap(rest.p, rest.bytes);
-          }
+          keepRest(r, n);
           filled += n;
         }
-        // What was not filled is fresh: room for it within the bound, as for a fresh mapping.
-        while (keptCount > 0 && inUse + keptBytes + bytes > mostInUse) {
-          const Range r = take(0);
-          munmap(r.p, r.bytes);
-        }
-        inUse += bytes;
-        mostInUse = std::max(mostInUse, inUse);
+        makeRoom(bytes);  // what was not filled is fresh, as a fresh mapping is
+        nowInUse(bytes);
         return place(to, bytes);
       }
     }
-    // A fresh mapping: kept ones go first, oldest first, where it would take the process past its
-    // high-water mark.
-    while (keptCount > 0 && inUse + keptBytes + bytes > mostInUse) {
-      const Range r = take(0);
-      munmap(r.p, r.bytes);
-    }
-    inUse += bytes;
-    mostInUse = std::max(mostInUse, inUse);
+    // A fresh mapping, within the high-water mark.
+    makeRoom(bytes);
+    nowInUse(bytes);
   }
   void* m = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (m == MAP_FAILED) {
@@ -232,7 +228,7 @@ void deallocate(void* p) noexcept {
   if (inUse + keptBytes + bytes <= mostInUse && recurs(bytes))
     keep({mapping, bytes});
   else
-    munmap(mapping, bytes);
+    release({mapping, bytes});
 }
 
 }  // namespace
@@ -240,10 +236,7 @@ void deallocate(void* p) noexcept {
 namespace geoshift::cli {
 void releaseKeptArrays() {
   const std::lock_guard<std::mutex> hold(keptLock);
-  while (keptCount > 0) {
-    const Range r = take(0);
-    munmap(r.p, r.bytes);
-  }
+  while (keptCount > 0) release(take(0));
 }
 KeptArrays keptArrays() {
   const std::lock_guard<std::mutex> hold(keptLock);

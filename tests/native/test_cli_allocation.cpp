@@ -38,6 +38,13 @@ long faultsWriting(char* p, std::size_t size, char value) {
   return after.ru_minflt - before.ru_minflt;
 }
 
+// Whether this build keeps arrays; a warning where it does not.
+bool keeps() {
+  if (keptArrays().enabled) return true;
+  WARN("this build keeps no arrays (AddressSanitizer, or no glibc): nothing to test");
+  return false;
+}
+
 bool withinHighWater() {
   const auto k = keptArrays();
   return k.inUse + k.kept <= k.mostInUse;
@@ -46,10 +53,7 @@ bool withinHighWater() {
 }  // namespace
 
 TEST_CASE("kept arrays: a size asked for twice is kept and handed out again", "[cli][allocation]") {
-  if (!keptArrays().enabled) {
-    WARN("this build keeps no arrays (AddressSanitizer, or no glibc): nothing to test");
-    return;
-  }
+  if (!keeps()) return;
   releaseKeptArrays();
   const std::size_t size = 3 * kMB + 123;  // a size nothing else in this program asks for
 
@@ -82,10 +86,7 @@ TEST_CASE("kept arrays: a size asked for twice is kept and handed out again", "[
 }
 
 TEST_CASE("kept arrays: a request no kept array holds takes the pages of several", "[cli][allocation]") {
-  if (!keptArrays().enabled) {
-    WARN("this build keeps no arrays (AddressSanitizer, or no glibc): nothing to test");
-    return;
-  }
+  if (!keeps()) return;
   releaseKeptArrays();
   const std::size_t size = 2 * kMB + 12345;  // a size nothing else in this program asks for
   for (int round = 0; round < 2; ++round) {  // asked for four times: both kept
@@ -111,10 +112,7 @@ TEST_CASE("kept arrays: a request no kept array holds takes the pages of several
 }
 
 TEST_CASE("kept arrays: never beyond the high-water mark, never held twice", "[cli][allocation]") {
-  if (!keptArrays().enabled) {
-    WARN("this build keeps no arrays (AddressSanitizer, or no glibc): nothing to test");
-    return;
-  }
+  if (!keeps()) return;
   releaseKeptArrays();
   // Random allocations and frees of a few recurring sizes around 1 MB and up, each array filled with
   // its own tag and checked before it is freed: an array handed to two holders would be overwritten.
