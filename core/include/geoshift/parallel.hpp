@@ -19,6 +19,9 @@ struct ParallelOptions {
   int threads = 0;        // 0: all hardware threads; clamped to [1, hardware threads]
   int chunk = 16;         // indices per hand-out: small enough that cancel and progress stay prompt
   double reportSeconds = 0.1;  // progress at least this often, when the work is that long
+  // The kernels in their portable form only, even where a processor's wider instructions are used by
+  // default (the face normal shift's AVX2 form on x86-64): the same bits either way; for tests.
+  bool portableKernels = false;
 };
 
 // The number of threads a call with `requested` would use (0 = all).
