@@ -115,7 +115,8 @@ TEST_CASE("the face normal shift keeps constant normals and creases, and ignores
 
 // The shift's wider-instruction form (AVX2 on x86-64 processors that have it) runs the portable
 // form's operations in the same order: every normal must be the same bits, for straight and stored
-// (geodesic) weights, a zero normal, and range bandwidths whose exponents reach the clamp.
+// (geodesic) weights, a zero normal, and range bandwidths whose exponents reach the clamp. (On a
+// processor without AVX2 both calls run the portable form.)
 TEST_CASE("the face normal shift gives the same bits with and without the processor's wider instructions",
           "[face-normal-shift]") {
   const Mesh sphere = build(shapes::icosphere(4));
