@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -20,11 +21,24 @@ struct Run {
   std::string out, err;
 };
 
+// The directory the CLI's captured output goes to: one per process (ctest runs several test
+// executables at once), removed when the process ends so that runs leave nothing in the temp dir.
+inline const fs::path& cliCaptureDir() {
+  struct Dir {
+    fs::path path = fs::temp_directory_path() / ("geoshift-cli-io-" + std::to_string(getpid()));
+    Dir() { fs::create_directories(path); }
+    ~Dir() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
+}
+
 inline Run geoshiftCli(const std::string& args) {
   static int counter = 0;
-  // Per process: ctest runs several test executables at once.
-  const fs::path dir = fs::temp_directory_path() / ("geoshift-cli-io-" + std::to_string(getpid()));
-  fs::create_directories(dir);
+  const fs::path& dir = cliCaptureDir();
   const fs::path out = dir / ("out" + std::to_string(counter) + ".txt");
   const fs::path err = dir / ("err" + std::to_string(counter++) + ".txt");
   const std::string cmd = std::string("\"") + GEOSHIFT_CLI + "\" " + args + " >\"" + out.string() + "\" 2>\"" +
@@ -34,6 +48,8 @@ inline Run geoshiftCli(const std::string& args) {
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = slurp(out);
   r.err = slurp(err);
+  fs::remove(out);
+  fs::remove(err);
   return r;
 }
 

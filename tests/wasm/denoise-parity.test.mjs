@@ -7,7 +7,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 
-import { loadGeoshift } from './support.mjs';
+import { loadGeoshift, scratchDir } from './support.mjs';
 import { assertClose, box, jiggle, runNative, sameBits, writeCoff } from './filter-support.mjs';
 
 let geoshift;
@@ -15,7 +15,7 @@ let threaded;
 let dir;
 before(async () => {
   geoshift = await loadGeoshift();
-  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-denoise-'));
+  dir = scratchDir('geoshift-denoise-');
 });
 after(() => threaded?.close());
 

@@ -7,10 +7,9 @@ import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 
-import { loadGeoshift, nativeCli, readOff, repoRoot } from './support.mjs';
+import { loadGeoshift, nativeCli, readOff, repoRoot, scratchDir } from './support.mjs';
 import { assertClose, box, jiggle, writeCoff } from './filter-support.mjs';
 
 const table = JSON.parse(fs.readFileSync(path.join(repoRoot, 'tests/data/denoise-requests.json'), 'utf8')).requests;
@@ -22,7 +21,7 @@ let dir;
 let input;
 before(async () => {
   geoshift = await loadGeoshift();
-  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-denoise-requests-'));
+  dir = scratchDir('geoshift-denoise-requests-');
   input = path.join(dir, 'noisy.off');
   writeCoff(input, noisy);
 });

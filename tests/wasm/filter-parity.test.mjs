@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 
-import { loadGeoshift } from './support.mjs';
+import { loadGeoshift, scratchDir } from './support.mjs';
 import { assertClose, icosphere, jiggle, runNative, sameBits, twoColorSphere, writeCoff } from './filter-support.mjs';
 
 let geoshift;
@@ -16,7 +16,7 @@ let threaded;
 let dir;
 before(async () => {
   geoshift = await loadGeoshift();
-  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-filter-'));
+  dir = scratchDir('geoshift-filter-');
 });
 after(() => threaded?.close());
 

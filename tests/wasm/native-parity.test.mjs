@@ -5,11 +5,11 @@ import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 
 import {
   firstMismatch, loadGeoshift, nativeCli, readGlbAttribute, readOff, saddle, sphereOff, writeOff,
+  scratchDir,
 } from './support.mjs';
 
 const kinds = { mean: 'meanCurvature', gauss: 'gaussianCurvature', abs: 'absoluteCurvature' };
@@ -18,7 +18,7 @@ let geoshift;
 let dir;
 before(async () => {
   geoshift = await loadGeoshift();
-  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-wasm-'));
+  dir = scratchDir('geoshift-wasm-');
 });
 
 function nativeCurvature(offFile, kind) {

@@ -5,18 +5,18 @@ import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 
 import {
   firstMismatch, loadGeoshift, nativeCli, readGlbAttribute, readOff, saddle, sphereOff, unweldedCube, writeOff,
+  scratchDir,
 } from './support.mjs';
 
 let geoshift;
 let dir;
 before(async () => {
   geoshift = await loadGeoshift();
-  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-ops-'));
+  dir = scratchDir('geoshift-ops-');
 });
 
 function native(args, off, attribute) {

@@ -1,6 +1,7 @@
 // Shared helpers of the wasm tests: loading the Node flavours, small procedural meshes, OFF
 // writing and GLB reading (for comparing with the native CLI).
 import fs from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
 import { createRequire } from 'node:module';
 import { fileURLToPath } from 'node:url';
@@ -15,6 +16,14 @@ export const sharedData = process.env.GEOSHIFT_SHARED_DATA || path.join(repoRoot
 export const sphereOff = path.join(sharedData, 'cgal_debian_libcgal_demo/data/meshes/sphere.off');
 
 const require = createRequire(import.meta.url);
+
+// A fresh directory under the system temp dir for one test file's outputs, removed when the
+// process ends (each test file runs in its own process), so that test runs leave nothing behind.
+export function scratchDir(prefix) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), prefix));
+  process.once('exit', () => fs.rmSync(dir, { recursive: true, force: true }));
+  return dir;
+}
 
 // The CommonJS flavours; `wasmBinary` because a CommonJS build under Node >= 18 would try to
 // fetch() its .wasm by file path. The threaded one keeps its worker pool alive: call `close()`.

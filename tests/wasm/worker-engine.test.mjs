@@ -4,12 +4,11 @@
 import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import ts from 'typescript';
 
-import { loadGeoshift, repoRoot, saddle } from './support.mjs';
+import { loadGeoshift, repoRoot, saddle, scratchDir } from './support.mjs';
 
 let Engine;
 let ModuleApi;
@@ -17,7 +16,7 @@ let isRequest;
 let module;
 
 before(async () => {
-  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-engine-'));
+  const dir = scratchDir('geoshift-engine-');
   const src = path.join(repoRoot, 'package/src');
   fs.writeFileSync(path.join(dir, 'package.json'), '{ "type": "module" }\n');
   for (const name of ['engine', 'module-api', 'protocol', 'errors']) {

@@ -9,16 +9,15 @@ import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 import validator from 'gltf-validator';
 
-import { nativeCli } from './support.mjs';
+import { nativeCli, scratchDir } from './support.mjs';
 import { box, jiggle } from './filter-support.mjs';
 
 let dir;
 before(() => {
-  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'geoshift-written-'));
+  dir = scratchDir('geoshift-written-');
 });
 
 function cli(...args) {
