@@ -5,6 +5,7 @@
 #include <cstring>
 #include <sstream>
 #include <unordered_map>
+#include <utility>
 
 #include "geoshift/check.hpp"
 #include "geoshift/error.hpp"
@@ -391,11 +392,43 @@ MeshBuild buildMesh(const TriangleSoup& soup, const MeshBuildOptions& options) {
 
   result.mesh = Mesh(std::move(positions), faces, &r);
 
-  // A caller vertex of a split vertex belongs to the piece its own faces went to.
+  // A caller vertex of a split vertex belongs to the piece its own faces went to. One whose faces
+  // went to several pieces (one index shared by a surface and a fin cut off it) belongs to the
+  // piece that holds most of them, the lower vertex on a tie (the original before its copies): a
+  // caller vertex has one position to write back, and a small piece must not move the surface's.
   const Mesh& m = result.mesh;
+  std::vector<char> severalPieces(soup.positions.size(), 0);
+  std::vector<int> first(soup.positions.size(), -1);
   for (int f = 0; f < m.faceCount(); ++f) {
     const Face& caller = soup.faces[m.inputFace(f)];
-    for (int k = 0; k < 3; ++k) result.vertexOf[caller[k]] = m.face(f)[k];
+    for (int k = 0; k < 3; ++k) {
+      int& at = first[caller[k]];
+      if (at < 0) at = m.face(f)[k];
+      if (at != m.face(f)[k]) severalPieces[caller[k]] = 1;
+    }
+  }
+  std::vector<std::pair<int, int>> incidences;  // (caller vertex, mesh vertex), for those with several pieces
+  for (int f = 0; f < m.faceCount(); ++f) {
+    const Face& caller = soup.faces[m.inputFace(f)];
+    for (int k = 0; k < 3; ++k) {
+      if (severalPieces[caller[k]]) incidences.emplace_back(caller[k], m.face(f)[k]);
+      else result.vertexOf[caller[k]] = m.face(f)[k];
+    }
+  }
+  std::sort(incidences.begin(), incidences.end());
+  for (size_t i = 0; i < incidences.size();) {
+    const int c = incidences[i].first;
+    int best = -1, bestCount = 0;
+    while (i < incidences.size() && incidences[i].first == c) {
+      size_t j = i;
+      while (j < incidences.size() && incidences[j] == incidences[i]) ++j;
+      if (static_cast<int>(j - i) > bestCount) {  // ascending vertices: a tie keeps the lower
+        best = incidences[i].second;
+        bestCount = static_cast<int>(j - i);
+      }
+      i = j;
+    }
+    result.vertexOf[c] = best;
   }
   return result;
 }

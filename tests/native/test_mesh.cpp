@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -198,6 +199,22 @@ TEST_CASE("an edge with three faces is cut, never a crash", "[mesh][nonmanifold]
   REQUIRE(b.report.nonManifoldVertices == 2);
   REQUIRE(b.mesh.vertexCount() == 7);
   for (int v = 5; v < 7; ++v) REQUIRE(b.mesh.position(v) == b.mesh.position(b.mesh.originalVertex(v)));
+  // Callers 0 and 1 are shared by the two faces that stay joined and the one cut off: they follow
+  // the piece with two of their faces, in whatever order the faces come, so that the lone face
+  // cannot move them.
+  for (const std::vector<Face>& faces : {std::vector<Face>{{0, 1, 2}, {1, 0, 3}, {1, 0, 4}},
+                                         std::vector<Face>{{1, 0, 4}, {0, 1, 2}, {1, 0, 3}},
+                                         std::vector<Face>{{1, 0, 3}, {1, 0, 4}, {0, 1, 2}}}) {
+    MeshBuild c = buildMesh(soup(p, faces));
+    REQUIRE(c.mesh.vertexCount() == 7);
+    for (int caller : {0, 1}) {
+      const int v = c.vertexOf[caller];
+      int incident = 0;
+      for (int f = 0; f < c.mesh.faceCount(); ++f) incident += std::ranges::count(c.mesh.face(f), v);
+      CAPTURE(caller, v);
+      REQUIRE(incident == 2);
+    }
+  }
 }
 
 TEST_CASE("faces of opposite orientation on one edge count as non-manifold", "[mesh][nonmanifold]") {
@@ -221,6 +238,14 @@ TEST_CASE("a vertex shared by two fans is split and the caller map follows the f
   REQUIRE(b.vertexOf[0] != b.vertexOf[3]);
   REQUIRE(b.mesh.originalVertex(b.vertexOf[3]) == b.vertexOf[0]);
   REQUIRE(b.mesh.boundaryLoops().size() == 2);
+
+  // The same bow tie with one caller vertex at the origin: the pieces hold one face each, and the
+  // tie goes to the original vertex, not to its copy.
+  MeshBuild shared = buildMesh(soup({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}}));
+  REQUIRE(shared.report.nonManifoldVertices == 1);
+  REQUIRE(shared.mesh.vertexCount() == 6);
+  REQUIRE(shared.vertexOf[0] == 0);
+  REQUIRE(shared.mesh.originalVertex(5) == 0);
 
   // Two tetrahedra sharing a vertex: both closed, the shared vertex split.
   TriangleSoup t = shapes::tetrahedron();
