@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string>
 
 #include "commands.hpp"
 #include "geoshift/denoise_request.hpp"
@@ -20,8 +21,23 @@ struct DenoiseArgs {
   std::optional<TableOptions> options;  // the denoise request's parameters
 };
 
+// docs/denoising.md#small-pieces
+std::string keptPieces(const DenoiseResult& r, const DenoiseOptions& o) {
+  if (r.keptPieces == 0) return "";
+  std::ostringstream s;
+  s << r.keptPieces << (r.keptPieces == 1 ? " piece" : " pieces") << " of fewer than " << o.minPieceVertices
+    << " vertices (" << r.keptVertices << " vertices) kept as " << (r.keptPieces == 1 ? "it was" : "they were")
+    << " (--min-piece)";
+  return s.str();
+}
+
 void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
   const DenoiseResult r = denoise(mesh, o);
+  if (r.keptPieces > 0 && r.filteredVertices == 0) {
+    std::cerr << "geoshift: nothing denoised: " << keptPieces(r, o) << "\n";
+    return;
+  }
+  if (r.keptPieces > 0) std::cerr << "geoshift: " << keptPieces(r, o) << "\n";
   if (o.preset == DenoisePreset::Paper) {
     std::cerr << "geoshift: mean shift (paper preset) " << o.paper.passes << " passes, iterations mean " << r.meanIterations
               << ", converged " << 100 * r.convergedFraction << "%, " << r.threads << " threads\n";

@@ -1,9 +1,11 @@
 // geoshift info FILE: what a mesh file holds and what the core makes of it.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 
 #include "commands.hpp"
+#include "geoshift/denoise.hpp"
 #include "geoshift/geometry.hpp"
 #include "geoshift/wavelet.hpp"
 
@@ -43,6 +45,13 @@ void printPart(const Document& doc, const MeshPart& part, int levels) {
     if (loops.size() > 8) std::printf(" ...");
     std::printf(")");
   }
+  std::printf("\n");
+  // docs/denoising.md#small-pieces: the denoiser leaves pieces of fewer vertices than this as they are.
+  const int smallPiece = DenoiseOptions{}.minPieceVertices;
+  const Pieces parts = pieces(m);
+  const auto small = std::ranges::count_if(parts.vertexCount, [&](int n) { return n < smallPiece; });
+  std::printf("  pieces              %zu", parts.vertexCount.size());
+  if (small > 0) std::printf(" (%td of fewer than %d vertices)", small, smallPiece);
   std::printf("\n");
   std::printf("  degenerate faces    %d (repeated index %d, zero area %d)\n",
               r.repeatedIndexFaces + r.zeroAreaFaces, r.repeatedIndexFaces, r.zeroAreaFaces);

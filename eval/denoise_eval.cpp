@@ -174,7 +174,7 @@ struct WhatIf {
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
-      tieProbes;
+      tieProbes, minPieceVertices;
   std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
@@ -185,6 +185,7 @@ struct WhatIf {
     if (strength) o.strength = *strength;
     if (detailBoundRatio) o.detailBoundRatio = *detailBoundRatio;
     if (levelLean) o.levelLean = *levelLean;
+    if (minPieceVertices) o.minPieceVertices = *minPieceVertices;
     if (gradientRiskWeight) o.gradientRiskWeight = *gradientRiskWeight;
     if (impulseSpectrumKurtosis) o.impulseSpectrumKurtosis = *impulseSpectrumKurtosis;
     if (highFrequencyLevel) o.highFrequencyLevel = *highFrequencyLevel;
@@ -533,7 +534,7 @@ int usage(const char* error) {
          "  --tie-standard-errors, --tie-normals on|off,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
-         "  --gradient-risk-weight, --impulse-spectrum-kurtosis\n"
+         "  --gradient-risk-weight, --impulse-spectrum-kurtosis, --min-piece (minPieceVertices)\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
@@ -589,6 +590,7 @@ int main(int argc, char** argv) {
       else if (a == "--detail-bound-ratio") whatIf.detailBoundRatio = std::stod(value());
       else if (a == "--level-lean") whatIf.levelLean = std::stod(value());
       else if (a == "--gradient-risk-weight") whatIf.gradientRiskWeight = std::stod(value());
+      else if (a == "--min-piece") whatIf.minPieceVertices = std::stoi(value());
       else if (a == "--impulse-spectrum-kurtosis") whatIf.impulseSpectrumKurtosis = std::stod(value());
       else if (a == "--high-frequency-level") whatIf.highFrequencyLevel = value() != "off";
       else if (a == "--impulse-shrink") whatIf.impulseShrink = std::stod(value());

@@ -38,6 +38,8 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("displacementKurtosis", r.displacementKurtosis);
       out.stats.set("spectrumKurtosis", r.spectrumKurtosis);
     }
+    out.stats.set("keptPieces", r.keptPieces);
+    out.stats.set("keptVertices", r.keptVertices);
     out.stats.set("limitedSteps", r.limitedSteps);
     out.stats.set("threads", r.threads);
     out.stats.set("ms", r.seconds * 1000);

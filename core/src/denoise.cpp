@@ -3,18 +3,63 @@
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "denoise_detail.hpp"
 #include "geoshift/error.hpp"
+#include "geoshift/mesh.hpp"
+#include "geoshift/parallel.hpp"
 
 namespace geoshift {
 
 namespace {
 
-DenoiseResult direct(Mesh& mesh, const DenoiseOptions& options, const Progress& progress) {
-  if (mesh.faceCount() == 0) throw InputError("denoise: the mesh has no faces");
+DenoiseResult preset(Mesh& mesh, const DenoiseOptions& options, const Progress& progress) {
   return options.preset == DenoisePreset::Paper ? denoise_detail::denoisePaper(mesh, options, progress)
                                                 : denoise_detail::denoiseDefault(mesh, options, progress);
+}
+
+// The preset runs on the pieces of at least minPieceVertices vertices, as a mesh of their own
+// (vertices and faces in their order, so a mesh with no small piece is denoised exactly as before);
+// the small pieces keep their positions (docs/denoising.md#small-pieces).
+DenoiseResult direct(Mesh& mesh, const DenoiseOptions& options, const Progress& progress) {
+  if (mesh.faceCount() == 0) throw InputError("denoise: the mesh has no faces");
+  if (options.minPieceVertices < 0)
+    throw InputError("denoise: the smallest piece denoised must be >= 0 vertices (got " +
+                     std::to_string(options.minPieceVertices) + ")");
+  const Pieces parts = pieces(mesh);
+  std::vector<char> small(parts.vertexCount.size(), 0);
+  int keptPieces = 0, keptVertices = 0;
+  for (size_t p = 0; p < small.size(); ++p) {
+    if (parts.vertexCount[p] >= options.minPieceVertices) continue;
+    small[p] = 1;
+    ++keptPieces;
+    keptVertices += parts.vertexCount[p];
+  }
+  if (keptPieces == 0) return preset(mesh, options, progress);
+
+  std::vector<int> restIndex(mesh.vertexCount(), -1);
+  std::vector<Vec3> positions;
+  for (int v = 0; v < mesh.vertexCount(); ++v) {
+    if (parts.pieceOf[v] >= 0 && small[parts.pieceOf[v]]) continue;
+    restIndex[v] = static_cast<int>(positions.size());
+    positions.push_back(mesh.position(v));
+  }
+  std::vector<Face> faces;
+  for (const Face& f : mesh.faces())
+    if (!small[parts.pieceOf[f[0]]]) faces.push_back({restIndex[f[0]], restIndex[f[1]], restIndex[f[2]]});
+  DenoiseResult result;
+  if (!faces.empty()) {
+    Mesh rest(std::move(positions), faces);
+    result = preset(rest, options, progress);
+    for (int v = 0; v < mesh.vertexCount(); ++v)
+      if (restIndex[v] >= 0) mesh.positions()[v] = rest.position(restIndex[v]);
+  } else {
+    result.threads = resolveThreads(options.threads);
+  }
+  result.keptPieces = keptPieces;
+  result.keptVertices = keptVertices;
+  return result;
 }
 
 }  // namespace

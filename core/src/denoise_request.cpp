@@ -108,6 +108,7 @@ DenoiseSettings denoiseSettings(const ParamRequest& r, DenoiseSettings s) {
     if (r.has("threads")) o.threads = r.integer("threads");
     if (r.has("levels")) o.levels = r.integer("levels");
     if (r.has("alpha")) o.alpha = r.numbers("alpha");
+    if (r.has("minPiece")) o.minPieceVertices = r.integer("minPiece");
     if (o.preset == DenoisePreset::Paper)
       applyPaper(r, o);
     else

@@ -433,6 +433,36 @@ MeshBuild buildMesh(const TriangleSoup& soup, const MeshBuildOptions& options) {
   return result;
 }
 
+Pieces pieces(const Mesh& mesh) {
+  const int nv = mesh.vertexCount();
+  // Union-find over the faces' vertices, each root the lowest vertex of its set.
+  std::vector<int> parent(nv);
+  for (int v = 0; v < nv; ++v) parent[v] = v;
+  auto root = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const Face& f : mesh.faces())
+    for (int k = 1; k < 3; ++k) {
+      const int a = root(f[0]), b = root(f[k]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  Pieces out;
+  out.pieceOf.assign(nv, -1);
+  std::vector<int> numberOf(nv, -1);
+  for (int v = 0; v < nv; ++v) {
+    if (mesh.isIsolated(v)) continue;
+    int& n = numberOf[root(v)];
+    if (n < 0) {
+      n = static_cast<int>(out.vertexCount.size());
+      out.vertexCount.push_back(0);
+    }
+    out.pieceOf[v] = n;
+    ++out.vertexCount[n];
+  }
+  return out;
+}
+
 std::vector<double> toCallerLayout(const std::vector<double>& meshValues, int dim,
                                    const std::vector<int>& vertexOf) {
   std::vector<double> out(vertexOf.size() * dim);

@@ -246,6 +246,10 @@ OpParamSpecs denoiseSpecs() {
               P("threads", T::Integer, "worker threads (0 = all); results do not depend on it")
                   .byDefault(static_cast<double>(d.threads)).range(0, 1024)
                   .appliesWhen({{"method", {"meanshift", "taubin"}}}),
+              P("minPiece", T::Integer,
+                "pieces (parts not joined to the rest by faces) of fewer vertices keep their positions: too small "
+                "to tell noise from shape; 0: every piece is denoised")
+                  .byDefault(static_cast<double>(d.minPieceVertices)).range(0, 1e9).appliesWhen(meanShift),
               P("levels", T::Integer, "wavelet levels: denoise the coarse mesh and restore the details times alpha")
                   .byDefault(static_cast<double>(d.levels)).range(0, kInf).appliesWhen(meanShift),
               P("alpha", T::Number, "detail gain per level, finest first, or one for all")

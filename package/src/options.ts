@@ -363,6 +363,13 @@ export interface DenoiseOptions {
    */
   threads?: number;
   /**
+   * Pieces (parts not joined to the rest by faces) of fewer vertices keep their positions: too
+   * small to tell noise from shape; 0: every piece is denoised.
+   *
+   * Default: `50`. A whole number ≥ 0 and ≤ 1000000000. Applies only where method is 'meanshift'.
+   */
+  minPiece?: number;
+  /**
    * Wavelet levels: denoise the coarse mesh and restore the details times alpha.
    *
    * Default: `0`. A whole number ≥ 0. Applies only where method is 'meanshift'.

@@ -148,6 +148,7 @@ class DenoiseOptions:
     seed: int
     threads: int
     paper: PaperDenoiseOptions
+    min_piece_vertices: int
     levels: int
     alpha: List[float]
     wavelet: WaveletOptions
@@ -167,7 +168,7 @@ class DenoiseOptions:
                  impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
                  impulse_spectrum_kurtosis: float = 5.5,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
-                 levels: int = 0, alpha: Sequence[float] = (0.0,),
+                 min_piece_vertices: int = 50, levels: int = 0, alpha: Sequence[float] = (0.0,),
                  wavelet: Union[WaveletOptions, dict, None] = None) -> None: ...
     def to_dict(self) -> Dict[str, Any]: ...
 

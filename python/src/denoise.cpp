@@ -81,6 +81,8 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["spectrum_kurtosis"] = r.spectrumKurtosis;
     out["mean_iterations"] = r.meanIterations;
     out["converged_fraction"] = r.convergedFraction;
+    out["kept_pieces"] = r.keptPieces;
+    out["kept_vertices"] = r.keptVertices;
     out["limited_steps"] = r.limitedSteps;
     out["threads"] = r.threads;
     out["filtered_vertices"] = r.filteredVertices;

@@ -233,6 +233,7 @@ void bindOptions(py::module_& m) {
       .def_readwrite("seed", &DenoiseOptions::seed)
       .def_readwrite("threads", &DenoiseOptions::threads)
       .def_readwrite("paper", &DenoiseOptions::paper)
+      .def_readwrite("min_piece_vertices", &DenoiseOptions::minPieceVertices)
       .def_readwrite("levels", &DenoiseOptions::levels)
       .def_readwrite("alpha", &DenoiseOptions::alpha)
       .def_readwrite("wavelet", &DenoiseOptions::wavelet);

@@ -47,6 +47,14 @@ test('the impulse correction is named after the tie', async () => {
     ' impulsive noise: only the outliers moved');
 });
 
+test('pieces too small to denoise are counted last, in the singular where one', async () => {
+  assert.equal(await chosen({ ...PASSES, keptPieces: 1, keptVertices: 4 }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35; 1 small piece left as it was');
+  assert.equal(await chosen({ ...PASSES, impulseGarrote: 'yes', keptPieces: 3, keptVertices: 40 }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35; impulsive noise: only the outliers moved; 3 small pieces left as they were');
+  assert.equal(await chosen({ ...PASSES, keptPieces: 0, keptVertices: 0 }), '15 Taubin steps + 2 passes at Keep edges 0.35');
+});
+
 test('stats of another filter or of the paper preset have no Chosen row', async () => {
   assert.equal(await chosen({ method: 'taubin', iterations: 20, threads: 1 }), null);
   assert.equal(await chosen({ preset: 'paper', passes: 3, meanIterations: 7.5 }), null);

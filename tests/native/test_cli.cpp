@@ -28,6 +28,9 @@ TEST_CASE("cli: info reports counts, boundary loops and defects", "[cli]") {
   REQUIRE(r.code == 0);
   REQUIRE_THAT(r.out, Catch::Contains("degenerate faces    1 (repeated index 1"));
   REQUIRE_THAT(r.err, Catch::Contains("face 12 (0, 0, 1)"));
+  REQUIRE_THAT(r.out, Catch::Contains("pieces              1 (1 of fewer than 50 vertices)\n"));
+  writeOff(dir / "ball.off", shapes::icosphere(2));
+  REQUIRE_THAT(geoshiftCli("info " + q(dir / "ball.off")).out, Catch::Contains("pieces              1\n"));
 }
 
 TEST_CASE("cli: noise is reproducible by seed, smoothing brings it back towards the clean mesh", "[cli]") {

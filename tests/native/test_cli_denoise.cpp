@@ -2,6 +2,9 @@
 #include <catch2/catch.hpp>
 
 #include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +16,18 @@ using namespace geoshift;
 using namespace geoshift::test;
 
 namespace {
+
+// The vertex lines of an OFF file the CLI wrote, as text: equal lines are equal numbers.
+std::vector<std::string> offVertexLines(const fs::path& file) {
+  std::istringstream in(slurp(file));
+  std::string line;
+  std::getline(in, line);  // OFF
+  std::getline(in, line);
+  const int nv = std::stoi(line);
+  std::vector<std::string> out(nv);
+  for (std::string& v : out) std::getline(in, v);
+  return out;
+}
 
 double rmsToClean(const fs::path& result, const fs::path& clean) {
   const Run r = geoshiftCli("compare --json " + q(result) + " " + q(clean));
@@ -66,6 +81,37 @@ TEST_CASE("cli: denoise says when the noise looks impulsive", "[cli][denoise]") 
   REQUIRE(r.code == 0);
   CHECK_THAT(r.err, !Catch::Contains("outliers"));
   CHECK(rmsToClean(dir / "out4.off", dir / "clean.off") > rmsToClean(dir / "out.off", dir / "clean.off"));
+}
+
+// docs/denoising.md#small-pieces: a tetrahedron beside a noisy sphere keeps its positions and the
+// report counts it; --min-piece 0 denoises it with the rest; a mesh of small pieces alone is left as it was.
+TEST_CASE("cli: denoise leaves pieces too small to denoise as they were and says so", "[cli][denoise]") {
+  const fs::path dir = tempDir("cli-denoise-pieces");
+  TriangleSoup soup = shapes::icosphere(3);
+  const int n = static_cast<int>(soup.positions.size());
+  for (const Vec3& p : shapes::tetrahedron().positions) soup.positions.push_back(Vec3(3, 0, 0) + 0.1 * p);
+  for (const Face& f : shapes::tetrahedron().faces) soup.faces.push_back({f[0] + n, f[1] + n, f[2] + n});
+  writeOff(dir / "clean.off", soup);
+  REQUIRE(geoshiftCli("noise " + q(dir / "clean.off") + " -o " + q(dir / "noisy.off") + " --amount 0.3 --seed 4").code == 0);
+  Run r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "out.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("geoshift: 1 piece of fewer than 50 vertices (4 vertices) kept as it was (--min-piece)\n"));
+  const std::vector<std::string> noisy = offVertexLines(dir / "noisy.off"), out = offVertexLines(dir / "out.off");
+  REQUIRE(out.size() == static_cast<size_t>(n + 4));
+  for (int v = n; v < n + 4; ++v) CHECK(out[v] == noisy[v]);
+  CHECK(out[0] != noisy[0]);
+  r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "every.off") + " --min-piece 0");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, !Catch::Contains("kept as"));
+  CHECK(offVertexLines(dir / "every.off")[n] != noisy[n]);
+
+  // Written by the CLI, so that the two files' numbers are printed alike.
+  writeOff(dir / "tetra-in.off", shapes::tetrahedron());
+  REQUIRE(geoshiftCli("smooth " + q(dir / "tetra-in.off") + " -o " + q(dir / "tetra.off") + " --iterations 0").code == 0);
+  r = geoshiftCli("denoise " + q(dir / "tetra.off") + " -o " + q(dir / "tetra-out.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("geoshift: nothing denoised: 1 piece of fewer than 50 vertices (4 vertices) kept as it was"));
+  CHECK(offVertexLines(dir / "tetra-out.off") == offVertexLines(dir / "tetra.off"));
 }
 
 TEST_CASE("cli: denoise removes noise with every method and says what it did", "[cli][denoise]") {

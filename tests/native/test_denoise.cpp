@@ -502,6 +502,66 @@ TEST_CASE("default denoising copes with boundaries, components and slivers", "[d
   REQUIRE(rmsTo(m, clean) < 0.7 * rmsTo(noisy, clean));
 }
 
+// docs/denoising.md#small-pieces: pieces of a few vertices keep their positions, and the rest is
+// denoised exactly as it would be alone, under both presets.
+TEST_CASE("pieces too small to denoise keep their positions and do not change the rest", "[denoise][pieces]") {
+  const Mesh ball = withNoise(build(shapes::icosphere(3)), 0.3, 5);
+  // The noisy ball, a small tetrahedron about two of its edges across and a lone triangle.
+  auto add = [](TriangleSoup& soup, const TriangleSoup& piece, const Vec3& at, double scale) {
+    const int offset = static_cast<int>(soup.positions.size());
+    for (const Vec3& p : piece.positions) soup.positions.push_back(at + scale * p);
+    for (const Face& f : piece.faces) soup.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  };
+  TriangleSoup smallSoup;
+  add(smallSoup, shapes::tetrahedron(), Vec3(3, 0, 0), 0.15);
+  add(smallSoup, TriangleSoup{{{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0.02}}, {{0, 1, 2}}}, Vec3(0, 3, 0), 1.0);
+  TriangleSoup soup{ball.positions(), ball.faces()};
+  add(soup, smallSoup, Vec3::Zero(), 1.0);
+  const Mesh all = build(soup);
+  const int nb = ball.vertexCount();
+  REQUIRE(all.vertexCount() == nb + 7);
+
+  const Pieces parts = pieces(all);
+  REQUIRE(parts.vertexCount == std::vector<int>{nb, 4, 3});
+  REQUIRE(parts.pieceOf[0] == 0);
+  REQUIRE(parts.pieceOf[nb] == 1);
+  REQUIRE(parts.pieceOf[nb + 6] == 2);
+
+  for (DenoisePreset preset : {DenoisePreset::Default, DenoisePreset::Paper}) {
+    INFO((preset == DenoisePreset::Paper ? "paper" : "default"));
+    DenoiseOptions o;
+    o.preset = preset;
+    Mesh alone = ball, m = all;
+    const DenoiseResult ra = denoise(alone, o), r = denoise(m, o);
+    REQUIRE(r.keptPieces == 2);
+    REQUIRE(r.keptVertices == 7);
+    REQUIRE(ra.keptPieces == 0);
+    REQUIRE(r.filteredVertices == nb);
+    // The ball's vertices, bit for bit as if it were alone; the small pieces' untouched.
+    for (int v = 0; v < nb; ++v) REQUIRE(m.position(v) == alone.position(v));
+    for (int v = nb; v < nb + 7; ++v) REQUIRE(m.position(v) == all.position(v));
+    REQUIRE(r.passesRun == ra.passesRun);
+  }
+
+  // Denoised with the rest (minPieceVertices 0), the tetrahedron is taken for noise: it shrinks.
+  DenoiseOptions every;
+  every.minPieceVertices = 0;
+  Mesh m = all;
+  const DenoiseResult r = denoise(m, every);
+  REQUIRE(r.keptPieces == 0);
+  auto edge = [](const Mesh& mesh, int v) { return (mesh.position(v) - mesh.position(v + 1)).norm(); };
+  INFO("tetrahedron edge " << edge(all, nb) << " -> " << edge(m, nb));
+  REQUIRE(edge(m, nb) < 0.8 * edge(all, nb));
+
+  // Nothing but small pieces: nothing moves.
+  Mesh small = build(smallSoup);
+  const std::vector<Vec3> before = small.positions();
+  const DenoiseResult none = denoise(small);
+  REQUIRE(none.keptPieces == 2);
+  REQUIRE(none.filteredVertices == 0);
+  REQUIRE(small.positions() == before);
+}
+
 TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "[denoise]") {
   Mesh m = withNoise(build(shapes::icosphere(3)), 0.3, 3);
   const std::vector<Vec3> before = m.positions();
@@ -534,6 +594,7 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.impulseSpectrumKurtosis = -1; }, "negative impulse spectrum kurtosis");
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = std::nan(""); }, "NaN gradient risk weight");
   refuses([](DenoiseOptions& o) { o.levelLean = std::nan(""); }, "NaN level lean");
+  refuses([](DenoiseOptions& o) { o.minPieceVertices = -1; }, "negative smallest piece");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.passes = 0; }, "paper: no passes");
   refuses([](DenoiseOptions& o) { o.preset = DenoisePreset::Paper, o.paper.meanShift.spatialBandwidth = 0; }, "paper: h_s 0");
 

@@ -236,6 +236,26 @@ def test_denoise_reports_a_taubin_only_winner(terrain):
     assert off.stats["taubin_only"] is False
 
 
+def test_denoise_keeps_pieces_too_small_to_denoise(terrain):
+    """docs/denoising.md#small-pieces: a lone triangle beside the noisy terrain keeps its positions
+    and is counted; the terrain comes out as it does alone; min_piece=0 denoises the triangle too."""
+    p, f = terrain.positions, terrain.faces
+    ael = np.mean(np.linalg.norm(p[f[:, [1, 2, 0]]] - p[f], axis=2))
+    noisy = terrain.copy()
+    noisy.positions = p + np.random.default_rng(10).normal(0, 0.3 * ael, p.shape)
+    n = len(p)
+    triangle = p.max(axis=0) + np.array([[1.0, 0, 0], [1.0 + ael, 0, 0], [1.0, ael, 0.2 * ael]])
+    both = geoshift.Mesh(np.vstack([noisy.positions, triangle]), np.vstack([f, [[n, n + 1, n + 2]]]))
+    kept = geoshift.denoise(both)
+    assert kept.stats["kept_pieces"] == 1 and kept.stats["kept_vertices"] == 3
+    np.testing.assert_array_equal(kept.mesh.positions[n:], triangle)
+    np.testing.assert_array_equal(kept.mesh.positions[:n], geoshift.denoise(noisy).mesh.positions)
+    every = geoshift.denoise(both, min_piece=0)
+    assert every.stats["kept_pieces"] == 0
+    assert not np.array_equal(every.mesh.positions[n:], triangle)
+    assert geoshift.DenoiseOptions().min_piece_vertices == 50
+
+
 def test_denoise_takes_the_risk_estimate_options(terrain):
     """The risk estimate's settings reach the denoiser: out-of-range values are refused with the
     core's message, and the noise level without its refinement is the race's upper estimate, at

@@ -123,6 +123,35 @@ test('impulse "on" corrects outliers under dense noise as `geoshift denoise --im
   assertClose(assert, on.positions, runNative(dir, 'denoise', off, ['--impulse', 'on'])('POSITION'), 'positions');
 });
 
+test('a piece too small to denoise keeps its positions and the box is denoised as alone; minPiece 0 as --min-piece 0', () => {
+  // The noisy box and a lone triangle beside it (docs/denoising.md#small-pieces).
+  const n = noisy.positions.length / 3;
+  const withTriangle = {
+    positions: Float32Array.from([...noisy.positions, 3, 0, 0, 3.3, 0, 0, 3, 0.3, 0.05]),
+    indices: Uint32Array.from([...noisy.indices, n, n + 1, n + 2]),
+  };
+  const run = (params) => {
+    const { handle, ok, error } = geoshift.loadMesh(withTriangle.positions, withTriangle.indices);
+    assert.equal(ok, true, error);
+    const r = geoshift.run(handle, 'denoise', params);
+    geoshift.freeMesh(handle);
+    assert.equal(r.ok, true, r.error);
+    return r;
+  };
+  const kept = run({});
+  assert.equal(kept.stats.keptPieces, 1);
+  assert.equal(kept.stats.keptVertices, 3);
+  assert.ok(sameBits(kept.positions.subarray(3 * n), withTriangle.positions.subarray(3 * n)), 'the triangle moved');
+  assert.ok(sameBits(kept.positions.subarray(0, 3 * n), denoised(geoshift, {}).positions), 'the box differs from the box alone');
+  const every = run({ minPiece: 0 });
+  assert.equal(every.stats.keptPieces, 0);
+  assert.ok(!sameBits(every.positions.subarray(3 * n), withTriangle.positions.subarray(3 * n)), 'the triangle did not move');
+  const off = path.join(dir, 'box-triangle.off');
+  writeCoff(off, withTriangle);
+  assertClose(assert, kept.positions, runNative(dir, 'denoise', off, [])('POSITION'), 'positions');
+  assertClose(assert, every.positions, runNative(dir, 'denoise', off, ['--min-piece', '0'])('POSITION'), 'positions, --min-piece 0');
+});
+
 test('bad denoise parameters are refused, naming what is wrong', () => {
   const { handle } = geoshift.loadMesh(noisy.positions, noisy.indices);
   const expectError = (params, pattern) => {

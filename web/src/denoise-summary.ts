@@ -8,7 +8,8 @@ export type DenoiseStats = Readonly<Record<string, number | string | undefined>>
 
 /**
  * "15 Taubin steps + 2 passes at Keep edges 0.35", "27 Taubin steps alone (no pass)", with what
- * decided a close call between the starts and whether only outliers were moved; null for stats
+ * decided a close call between the starts, whether only outliers were moved and how many pieces too
+ * small to denoise were left as they were; null for stats
  * that are not the default denoiser's (another filter, the paper preset).
  */
 export function chosenSummary(stats: DenoiseStats): string | null {
@@ -28,5 +29,9 @@ export function chosenSummary(stats: DenoiseStats): string | null {
       `; a close call between two starts, settled by ${counted(probes, 'more probe', 'more probes')}` +
       (stats.tieByNormals === 'yes' ? ' and then by the smoother normals' : '');
   if (stats.impulseGarrote === 'yes') text += '; impulsive noise: only the outliers moved';
+  // docs/denoising.md#small-pieces
+  const kept = stats.keptPieces;
+  if (typeof kept === 'number' && kept > 0)
+    text += `; ${counted(kept, 'small piece')} left as ${kept === 1 ? 'it was' : 'they were'}`;
   return text;
 }

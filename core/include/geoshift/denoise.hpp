@@ -166,6 +166,14 @@ struct DenoiseOptions {
   // --- Paper preset ---
   PaperDenoiseOptions paper;
 
+  // --- Both ---
+  // Pieces (vertices joined through faces) of fewer vertices keep their positions: at a few edges
+  // across, a piece's whole shape is at the frequencies smoothing removes (a tetrahedron collapses
+  // to a point, a fin cut off a non-manifold edge to a sliver), and their displacements would read
+  // as impulsive noise to the rest of the mesh (docs/denoising.md#small-pieces). 0: every piece is
+  // denoised.
+  int minPieceVertices = 50;
+
   // --- Both: hybrid denoising (Algorithm 2 on positions) ---
   // Analyse `levels` wavelet levels, denoise the coarse mesh, synthesise with detail gain `alpha`
   // (one for all levels or one per level; 0 drops the fine details with their noise).
@@ -195,6 +203,8 @@ struct DenoiseResult {
   double meanIterations = 0;     // of the mean shift, per vertex per pass
   double convergedFraction = 0;  // of the last pass
   // Both
+  int keptPieces = 0;            // pieces below minPieceVertices, left as they were
+  int keptVertices = 0;          // their vertices
   int limitedSteps = 0;          // vertex-update steps the flip guard shortened, all passes
   int threads = 1;
   int filteredVertices = 0;      // the mesh's, or the coarse mesh's with levels > 0

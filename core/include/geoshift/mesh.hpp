@@ -131,6 +131,14 @@ class Mesh {
   std::vector<int> originalVertex_;
 };
 
+// The connected pieces of a mesh: vertices joined through faces (after the build's repairs, so a
+// fin cut off a non-manifold edge is a piece of its own).
+struct Pieces {
+  std::vector<int> pieceOf;  // per vertex: its piece, numbered by lowest vertex; -1 for an isolated vertex
+  std::vector<int> vertexCount;  // per piece
+};
+Pieces pieces(const Mesh& mesh);
+
 // --- welding -----------------------------------------------------------------------------------
 
 struct WeldOptions {
