@@ -27,7 +27,7 @@ DenoiseResult direct(Mesh& mesh, const DenoiseOptions& options, const Progress& 
   if (options.minPieceVertices < 0)
     throw InputError("denoise: the smallest piece denoised must be >= 0 vertices (got " +
                      std::to_string(options.minPieceVertices) + ")");
-  const Pieces parts = pieces(mesh);
+  Pieces parts = pieces(mesh);
   std::vector<char> small(parts.vertexCount.size(), 0);
   int keptPieces = 0, keptVertices = 0;
   for (size_t p = 0; p < small.size(); ++p) {
@@ -36,7 +36,10 @@ DenoiseResult direct(Mesh& mesh, const DenoiseOptions& options, const Progress& 
     ++keptPieces;
     keptVertices += parts.vertexCount[p];
   }
-  if (keptPieces == 0) return preset(mesh, options, progress);
+  if (keptPieces == 0) {
+    parts = {};  // not held through the denoise (docs/denoising.md#speed-and-memory)
+    return preset(mesh, options, progress);
+  }
 
   std::vector<int> restIndex(mesh.vertexCount(), -1);
   std::vector<Vec3> positions;
