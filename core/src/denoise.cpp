@@ -1,4 +1,4 @@
-// denoise(): the hybrid wrapper and the choice of pipeline (denoise.hpp).
+// denoise(): small pieces set aside, the hybrid wrapper and the choice of pipeline (denoise.hpp).
 #include "geoshift/denoise.hpp"
 
 #include <chrono>
@@ -19,14 +19,34 @@ DenoiseResult preset(Mesh& mesh, const DenoiseOptions& options, const Progress& 
                                                 : denoise_detail::denoiseDefault(mesh, options, progress);
 }
 
-// The preset runs on the pieces of at least minPieceVertices vertices, as a mesh of their own
-// (vertices and faces in their order, so a mesh with no small piece is denoised exactly as before);
-// the small pieces keep their positions (docs/denoising.md#small-pieces).
-DenoiseResult direct(Mesh& mesh, const DenoiseOptions& options, const Progress& progress) {
-  if (mesh.faceCount() == 0) throw InputError("denoise: the mesh has no faces");
+// The preset, or with levels > 0 the preset on the coarse mesh of a wavelet analysis, the details
+// restored times alpha (Algorithm 2 on positions).
+DenoiseResult hybridOrPreset(Mesh& mesh, const DenoiseOptions& options, const Progress& progress) {
+  if (options.levels == 0) return preset(mesh, options, progress);
+  const auto start = std::chrono::steady_clock::now();
+  WaveletOptions w = options.wavelet;
+  w.levels = options.levels;
+  const Multiresolution mr = analyze(mesh, AttributeSet(mesh.vertexCount()), w, progress.slice(0, 0.05));
+  Mesh coarse = mr.coarse;
+  DenoiseResult result = preset(coarse, options, progress.slice(0.05, 0.95));
+  const SynthesisResult fine = synthesize(mr, coarse.positions(), mr.coarseAttributes, options.alpha, progress.slice(0.95, 1));
+  mesh.positions() = fine.mesh.positions();
+  result.filteredVertices = coarse.vertexCount();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+// The pieces of at least minPieceVertices vertices are denoised as a mesh of their own (vertices and
+// faces in their order, so a mesh with no small piece is denoised exactly as before); the small
+// pieces of the mesh given keep their positions, with the hybrid method too (docs/denoising.md#small-pieces).
+DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress& progress) {
+  if (options.levels < 0) throw InputError("denoise: levels must be >= 0 (got " + std::to_string(options.levels) + ")");
   if (options.minPieceVertices < 0)
     throw InputError("denoise: the smallest piece denoised must be >= 0 vertices (got " +
                      std::to_string(options.minPieceVertices) + ")");
+  if (mesh.faceCount() == 0) throw InputError("denoise: the mesh has no faces");
   Pieces parts = pieces(mesh);
   std::vector<char> small(parts.vertexCount.size(), 0);
   int keptPieces = 0, keptVertices = 0;
@@ -38,7 +58,7 @@ DenoiseResult direct(Mesh& mesh, const DenoiseOptions& options, const Progress& 
   }
   if (keptPieces == 0) {
     parts = {};  // not held through the denoise (docs/denoising.md#speed-and-memory)
-    return preset(mesh, options, progress);
+    return hybridOrPreset(mesh, options, progress);
   }
 
   std::vector<int> restIndex(mesh.vertexCount(), -1);
@@ -54,7 +74,7 @@ DenoiseResult direct(Mesh& mesh, const DenoiseOptions& options, const Progress& 
   DenoiseResult result;
   if (!faces.empty()) {
     Mesh rest(std::move(positions), faces);
-    result = preset(rest, options, progress);
+    result = hybridOrPreset(rest, options, progress);
     for (int v = 0; v < mesh.vertexCount(); ++v)
       if (restIndex[v] >= 0) mesh.positions()[v] = rest.position(restIndex[v]);
   } else {
@@ -62,26 +82,6 @@ DenoiseResult direct(Mesh& mesh, const DenoiseOptions& options, const Progress& 
   }
   result.keptPieces = keptPieces;
   result.keptVertices = keptVertices;
-  return result;
-}
-
-}  // namespace
-
-DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress& progress) {
-  if (options.levels < 0) throw InputError("denoise: levels must be >= 0 (got " + std::to_string(options.levels) + ")");
-  if (options.levels == 0) return direct(mesh, options, progress);
-  const auto start = std::chrono::steady_clock::now();
-  WaveletOptions w = options.wavelet;
-  w.levels = options.levels;
-  const Multiresolution mr = analyze(mesh, AttributeSet(mesh.vertexCount()), w, progress.slice(0, 0.05));
-  Mesh coarse = mr.coarse;
-  DenoiseOptions flat = options;
-  flat.levels = 0;
-  DenoiseResult result = direct(coarse, flat, progress.slice(0.05, 0.95));
-  const SynthesisResult fine = synthesize(mr, coarse.positions(), mr.coarseAttributes, options.alpha, progress.slice(0.95, 1));
-  mesh.positions() = fine.mesh.positions();
-  result.filteredVertices = coarse.vertexCount();
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "geoshift/denoise.hpp"
 #include "geoshift/denoise_request.hpp"
@@ -527,16 +528,19 @@ TEST_CASE("pieces too small to denoise keep their positions and do not change th
   REQUIRE(parts.pieceOf[nb] == 1);
   REQUIRE(parts.pieceOf[nb + 6] == 2);
 
-  for (DenoisePreset preset : {DenoisePreset::Default, DenoisePreset::Paper}) {
-    INFO((preset == DenoisePreset::Paper ? "paper" : "default"));
+  // Both presets, and the hybrid method (the small pieces are set aside before the wavelet analysis).
+  for (auto [preset, levels] : {std::pair{DenoisePreset::Default, 0}, std::pair{DenoisePreset::Paper, 0},
+                                std::pair{DenoisePreset::Default, 1}}) {
+    INFO((preset == DenoisePreset::Paper ? "paper" : "default") << ", levels " << levels);
     DenoiseOptions o;
     o.preset = preset;
+    o.levels = levels;
     Mesh alone = ball, m = all;
     const DenoiseResult ra = denoise(alone, o), r = denoise(m, o);
     REQUIRE(r.keptPieces == 2);
     REQUIRE(r.keptVertices == 7);
     REQUIRE(ra.keptPieces == 0);
-    REQUIRE(r.filteredVertices == nb);
+    REQUIRE(r.filteredVertices == ra.filteredVertices);
     // The ball's vertices, bit for bit as if it were alone; the small pieces' untouched.
     for (int v = 0; v < nb; ++v) REQUIRE(m.position(v) == alone.position(v));
     for (int v = nb; v < nb + 7; ++v) REQUIRE(m.position(v) == all.position(v));
