@@ -22,8 +22,8 @@ after(() => threaded?.close());
 const clean = box(6);
 const noisy = jiggle(clean, 0.06);
 
-function denoised(module, params) {
-  const { handle, ok, error } = module.loadMesh(noisy.positions, noisy.indices);
+function denoised(module, params, mesh = noisy) {
+  const { handle, ok, error } = module.loadMesh(mesh.positions, mesh.indices);
   assert.equal(ok, true, error);
   const r = module.run(handle, 'denoise', params);
   module.freeMesh(handle);
@@ -130,20 +130,12 @@ test('a piece too small to denoise keeps its positions and the box is denoised a
     positions: Float32Array.from([...noisy.positions, 3, 0, 0, 3.3, 0, 0, 3, 0.3, 0.05]),
     indices: Uint32Array.from([...noisy.indices, n, n + 1, n + 2]),
   };
-  const run = (params) => {
-    const { handle, ok, error } = geoshift.loadMesh(withTriangle.positions, withTriangle.indices);
-    assert.equal(ok, true, error);
-    const r = geoshift.run(handle, 'denoise', params);
-    geoshift.freeMesh(handle);
-    assert.equal(r.ok, true, r.error);
-    return r;
-  };
-  const kept = run({});
+  const kept = denoised(geoshift, {}, withTriangle);
   assert.equal(kept.stats.keptPieces, 1);
   assert.equal(kept.stats.keptVertices, 3);
   assert.ok(sameBits(kept.positions.subarray(3 * n), withTriangle.positions.subarray(3 * n)), 'the triangle moved');
   assert.ok(sameBits(kept.positions.subarray(0, 3 * n), denoised(geoshift, {}).positions), 'the box differs from the box alone');
-  const every = run({ minPiece: 0 });
+  const every = denoised(geoshift, { minPiece: 0 }, withTriangle);
   assert.equal(every.stats.keptPieces, 0);
   assert.ok(!sameBits(every.positions.subarray(3 * n), withTriangle.positions.subarray(3 * n)), 'the triangle did not move');
   const off = path.join(dir, 'box-triangle.off');
