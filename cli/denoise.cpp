@@ -51,6 +51,10 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
   line << "); ";
   if (!(r.noiseLevel > 0)) {
     line << "nothing to remove";
+  } else if (r.keptInput) {
+    // docs/denoising.md#the-input-as-a-candidate
+    line << "kept as it was: no candidate is estimated closer to the noise-free surface than the input ("
+         << r.passesRun << " passes computed)";
   } else if (o.fixedPasses > 0) {
     line << "Taubin " << r.presmoothingSteps << " steps + " << r.passes << " mean shift passes (fixed)";
   } else {

@@ -35,6 +35,7 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("tieByNormals", r.tieByNormals ? "yes" : "no");
       out.stats.set("estimatedError", r.estimatedError);
       out.stats.set("impulseGarrote", r.impulseGarrote ? "yes" : "no");
+      out.stats.set("keptInput", r.keptInput ? "yes" : "no");
       out.stats.set("displacementKurtosis", r.displacementKurtosis);
       out.stats.set("spectrumKurtosis", r.spectrumKurtosis);
     }

@@ -620,6 +620,17 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   result.rangeBandwidth = winner.rangeBandwidth;
   result.passes = winner.passes;
   if (finalSigma != raceSigma || raceSigma != lowSigma) result.noiseLevel = finalSigma * o.strength / ael;
+  if (o.inputCandidate && rank(winnerSums) >= rank(risk.sums(input, risk.probedInput()))) {
+    // The input, scored as any candidate is (its rank is 1 up to rounding), is estimated at least as
+    // close to the noise-free surface as the best of the others (docs/denoising.md#the-input-as-a-candidate).
+    result.keptInput = true;
+    result.presmoothingSteps = 0;
+    result.taubinOnly = false;
+    result.rangeBandwidth = 0;
+    result.passes = 0;
+    result.estimatedError = finalSigma / ael;  // the input's error is the noise
+    return finish();                           // `restore` puts the input back
+  }
   const Risk winnerRisk = risk.at(winnerSums, finalSigma);
   // Below a tenth of the noise the estimate is not resolved: one probe's spread is larger, and a
   // winner that set the refined noise level has an estimate of zero by construction.

@@ -77,6 +77,7 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["tie_by_normals"] = r.tieByNormals;
     out["estimated_error"] = r.estimatedError;
     out["impulse_garrote"] = r.impulseGarrote;
+    out["kept_input"] = r.keptInput;
     out["displacement_kurtosis"] = r.displacementKurtosis;
     out["spectrum_kurtosis"] = r.spectrumKurtosis;
     out["mean_iterations"] = r.meanIterations;

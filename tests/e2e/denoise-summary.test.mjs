@@ -55,6 +55,14 @@ test('pieces too small to denoise are counted last, in the singular where one', 
   assert.equal(await chosen({ ...PASSES, keptPieces: 0, keptVertices: 0 }), '15 Taubin steps + 2 passes at Keep edges 0.35');
 });
 
+test('a mesh left as it was says so, with no recipe, and still counts its small pieces', async () => {
+  const kept = { ...PASSES, presmoothingSteps: 0, passes: 0, rangeBandwidth: 0, keptInput: 'yes' };
+  assert.equal(await chosen(kept), 'left as it was: no smoothing is estimated to bring it closer to the noise-free surface');
+  assert.equal(await chosen({ ...kept, tieProbes: 2, keptPieces: 2, keptVertices: 8 }),
+    'left as it was: no smoothing is estimated to bring it closer to the noise-free surface; 2 small pieces left as they were');
+  assert.equal(await chosen({ ...PASSES, keptInput: 'no' }), '15 Taubin steps + 2 passes at Keep edges 0.35');
+});
+
 test('stats of another filter or of the paper preset have no Chosen row', async () => {
   assert.equal(await chosen({ method: 'taubin', iterations: 20, threads: 1 }), null);
   assert.equal(await chosen({ preset: 'paper', passes: 3, meanIterations: 7.5 }), null);

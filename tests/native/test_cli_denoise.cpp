@@ -184,3 +184,21 @@ TEST_CASE("cli: denoise refuses bad input without writing anything", "[cli][deno
   CHECK_THAT(r.err, Catch::Contains("mu"));
   CHECK_FALSE(fs::exists(dir / "out.off"));
 }
+
+// docs/denoising.md#the-input-as-a-candidate: a CAD block denoised once is, denoised again, written
+// back as it was read, and the report says why; the first run, on real noise, did smooth.
+TEST_CASE("cli: denoise leaves a mesh no candidate would improve as it was and says so", "[cli][denoise]") {
+  const fs::path dir = tempDir("cli-denoise-input");
+  writeOff(dir / "clean.off", shapes::box(12, 12, 12));
+  REQUIRE(geoshiftCli("noise " + q(dir / "clean.off") + " -o " + q(dir / "noisy.off") + " --amount 0.5 --seed 3").code == 0);
+  const std::string said = "kept as it was: no candidate is estimated closer to the noise-free surface than the input (";
+  Run r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "once.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, !Catch::Contains(said));
+  CHECK(offVertexLines(dir / "once.off") != offVertexLines(dir / "noisy.off"));
+  r = geoshiftCli("denoise " + q(dir / "once.off") + " -o " + q(dir / "twice.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains(said));
+  CHECK_THAT(r.err, !Catch::Contains("chosen by SURE"));
+  CHECK(offVertexLines(dir / "twice.off") == offVertexLines(dir / "once.off"));
+}

@@ -470,6 +470,47 @@ TEST_CASE("a Taubin-only candidate wins where passes cannot smooth enough, and i
   REQUIRE(rmsTo(none, clean) > rmsTo(m, clean));
 }
 
+// The input is a candidate of known risk, σ² (docs/denoising.md#the-input-as-a-candidate): a CAD
+// block denoised once and then again comes back from the second run as it went in, where without
+// the input as a candidate the second run rounds its creases further (and the impulse correction,
+// taking the creases for outliers, moves them alone). Noise is never kept.
+TEST_CASE("a mesh no candidate would bring closer to the noise-free surface is returned as it was", "[denoise][input]") {
+  const Mesh clean = build(shapes::box(12, 12, 12));
+  const Mesh noisy = withNoise(clean, 0.5, 3);
+  Mesh once = noisy;
+  const DenoiseResult first = denoise(once);
+  INFO("first: Taubin " << first.presmoothingSteps << " + " << first.passes << " passes, noise " << first.noiseLevel);
+  REQUIRE_FALSE(first.keptInput);
+  REQUIRE(rmsTo(once, clean) < 0.4 * rmsTo(noisy, clean));
+
+  Mesh twice = once;
+  const DenoiseResult second = denoise(twice);
+  INFO("second: noise " << second.noiseLevel << " AEL, estimated error " << second.estimatedError);
+  REQUIRE(second.keptInput);
+  REQUIRE(twice.positions() == once.positions());
+  REQUIRE(second.presmoothingSteps == 0);
+  REQUIRE(second.passes == 0);
+  REQUIRE_FALSE(second.taubinOnly);
+  REQUIRE_FALSE(second.impulseGarrote);
+  REQUIRE(second.passesRun > 0);                                   // the candidates were scored, and lost
+  REQUIRE(second.estimatedError == Approx(second.noiseLevel));    // the input's error is the noise
+
+  DenoiseOptions without;
+  without.inputCandidate = false;
+  Mesh moved = once;
+  const DenoiseResult other = denoise(moved, without);
+  REQUIRE_FALSE(other.keptInput);
+  REQUIRE(moved.positions() != once.positions());
+  REQUIRE(meanFeatureEdgeError(clean, moved) > meanFeatureEdgeError(clean, once));
+
+  // The same for any thread count: the comparison reads the same sums.
+  DenoiseOptions one;
+  one.threads = 1;
+  Mesh serial = once;
+  REQUIRE(denoise(serial, one).keptInput);
+  REQUIRE(serial.positions() == once.positions());
+}
+
 TEST_CASE("denoising a clean plane leaves it planar", "[denoise]") {
   for (DenoisePreset preset : {DenoisePreset::Default, DenoisePreset::Paper}) {
     Mesh m = build(shapes::grid(20, 0.3));

@@ -256,6 +256,51 @@ def test_denoise_keeps_pieces_too_small_to_denoise(terrain):
     assert geoshift.DenoiseOptions().min_piece_vertices == 50
 
 
+def _box_surface(n):
+    """The surface of the unit cube, each side an n x n grid of squares split in two."""
+    index, positions, faces = {}, [], []
+
+    def vertex(c):
+        if c not in index:
+            index[c] = len(positions)
+            positions.append(c)
+        return index[c]
+
+    for axis in range(3):
+        u, v = (axis + 1) % 3, (axis + 2) % 3
+        for side in (0, n):
+            for i in range(n):
+                for j in range(n):
+                    quad = []
+                    for a, b in ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)):
+                        c = [0, 0, 0]
+                        c[axis], c[u], c[v] = side, a, b
+                        quad.append(vertex(tuple(c)))
+                    if side == 0:
+                        quad.reverse()
+                    faces += [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]]
+    return geoshift.Mesh(np.array(positions, dtype=float) / n, np.array(faces))
+
+
+def test_denoise_returns_a_mesh_no_candidate_improves_as_it_was():
+    """docs/denoising.md#the-input-as-a-candidate: a noisy box denoised once is smoothed; denoised
+    again it comes back as it went in, with kept_input; input_candidate=False smooths it again."""
+    box = _box_surface(12)
+    direction = np.random.default_rng(3).normal(size=box.positions.shape)
+    noisy = box.copy()
+    noisy.positions = box.positions + 0.5 / 12 * direction / np.linalg.norm(direction, axis=1)[:, None]
+    once = geoshift.denoise(noisy)
+    assert once.stats["kept_input"] is False and once.stats["kept_pieces"] == 0
+    twice = geoshift.denoise(once.mesh)
+    assert twice.stats["kept_input"] is True
+    assert twice.stats["passes"] == 0 and twice.stats["presmoothing_steps"] == 0
+    np.testing.assert_array_equal(twice.mesh.positions, once.mesh.positions)
+    again = geoshift.denoise(once.mesh, input_candidate=False)
+    assert again.stats["kept_input"] is False
+    assert not np.array_equal(again.mesh.positions, once.mesh.positions)
+    assert geoshift.DenoiseOptions().input_candidate is True
+
+
 def test_denoise_takes_the_risk_estimate_options(terrain):
     """The risk estimate's settings reach the denoiser: out-of-range values are refused with the
     core's message, and the noise level without its refinement is the race's upper estimate, at

@@ -144,6 +144,23 @@ test('a piece too small to denoise keeps its positions and the box is denoised a
   assertClose(assert, every.positions, runNative(dir, 'denoise', off, ['--min-piece', '0'])('POSITION'), 'positions, --min-piece 0');
 });
 
+test('a denoised box denoised again comes back as it went in, as from `geoshift denoise`', () => {
+  // docs/denoising.md#the-input-as-a-candidate: no candidate ranks below the input's own risk. (On
+  // the 6 x 6 box nearly every vertex is near a crease and the second run reads a level of 0.09 AEL.)
+  const finer = box(8);
+  const once = denoised(geoshift, {}, jiggle(finer, 0.06));
+  assert.equal(once.stats.keptInput, 'no');
+  const again = { positions: once.positions, indices: finer.indices };
+  const twice = denoised(geoshift, {}, again);
+  assert.equal(twice.stats.keptInput, 'yes');
+  assert.equal(twice.stats.passes, 0);
+  assert.equal(twice.stats.presmoothingSteps, 0);
+  assert.ok(sameBits(twice.positions, once.positions), 'the input moved');
+  const off = path.join(dir, 'box-once.off');
+  writeCoff(off, again);
+  assertClose(assert, twice.positions, runNative(dir, 'denoise', off, [])('POSITION'), 'positions');
+});
+
 test('bad denoise parameters are refused, naming what is wrong', () => {
   const { handle } = geoshift.loadMesh(noisy.positions, noisy.indices);
   const expectError = (params, pattern) => {

@@ -7,15 +7,18 @@ import { counted } from './words';
 export type DenoiseStats = Readonly<Record<string, number | string | undefined>>;
 
 /**
- * "15 Taubin steps + 2 passes at Keep edges 0.35", "27 Taubin steps alone (no pass)", with what
- * decided a close call between the starts, whether only outliers were moved and how many pieces too
- * small to denoise were left as they were; null for stats
+ * "15 Taubin steps + 2 passes at Keep edges 0.35", "27 Taubin steps alone (no pass)" or that the mesh
+ * was left as it was, with what decided a close call between the starts, whether only outliers were
+ * moved and how many pieces too small to denoise were left as they were; null for stats
  * that are not the default denoiser's (another filter, the paper preset).
  */
 export function chosenSummary(stats: DenoiseStats): string | null {
   const steps = stats.presmoothingSteps;
   const passes = stats.passes;
   if (typeof steps !== 'number' || typeof passes !== 'number' || typeof stats.noiseLevel !== 'number') return null;
+  // docs/denoising.md#the-input-as-a-candidate
+  if (stats.keptInput === 'yes')
+    return withKeptPieces('left as it was: no smoothing is estimated to bring it closer to the noise-free surface', stats);
   let text =
     stats.taubinOnly === 'yes'
       ? `${counted(steps, 'Taubin step')} alone (no pass)`
@@ -29,6 +32,10 @@ export function chosenSummary(stats: DenoiseStats): string | null {
       `; a close call between two starts, settled by ${counted(probes, 'more probe', 'more probes')}` +
       (stats.tieByNormals === 'yes' ? ' and then by the smoother normals' : '');
   if (stats.impulseGarrote === 'yes') text += '; impulsive noise: only the outliers moved';
+  return withKeptPieces(text, stats);
+}
+
+function withKeptPieces(text: string, stats: DenoiseStats): string {
   // docs/denoising.md#small-pieces
   const kept = stats.keptPieces;
   if (typeof kept === 'number' && kept > 0)

@@ -121,6 +121,13 @@ struct DenoiseOptions {
   // turn least across an edge on average (the normal field's total variation, meanNormalTurn) wins
   // (docs/denoising.md#ties-between-starts). false: the leader by mean rank, however slight its lead.
   bool tieByNormals = true;
+  // The input itself is a candidate: it moves nothing, so its risk is the noise's, σ², exactly (no
+  // error to fit, a divergence of one a vertex). Where no other candidate ranks below it, the input
+  // is returned as it was, and the outlier correction does not run: on a clean or already denoised
+  // mesh every candidate takes more of the shape than of the noise, and the correction would take
+  // its creases and corners, which stand out like outliers, for the noise
+  // (docs/denoising.md#the-input-as-a-candidate). false: the best of the others, always.
+  bool inputCandidate = true;
   // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
   // refined from the candidates (the least variance a good one implies) and they are ranked again
   // (docs/denoising.md#the-noise-level).
@@ -196,6 +203,7 @@ struct DenoiseResult {
   double displacementKurtosis = 0;  // of the winner's displacement along N (impulseKurtosis)
   double spectrumKurtosis = 0;      // of the input's highest frequencies (impulseSpectrumKurtosis); 0: not read
   bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)
+  bool keptInput = false;       // no candidate ranked below the input: returned as it was (inputCandidate)
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
                                 // 0 when below a tenth of the noise level (not resolved)
   size_t neighborhoodBytes = 0;
