@@ -620,7 +620,9 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   result.rangeBandwidth = winner.rangeBandwidth;
   result.passes = winner.passes;
   if (finalSigma != raceSigma || raceSigma != lowSigma) result.noiseLevel = finalSigma * o.strength / ael;
-  if (o.inputCandidate && rank(winnerSums) >= rank(risk.sums(input, risk.probedInput()))) {
+  // A correction asked for in any case (a trigger of 0: `--impulse on`) is not overruled.
+  const bool correctionForced = o.impulseShrink > 0 && o.impulseKurtosis == 0;
+  if (o.inputCandidate && !correctionForced && rank(winnerSums) >= rank(risk.sums(input, risk.probedInput()))) {
     // The input, scored as any candidate is (its rank is 1 up to rounding), is estimated at least as
     // close to the noise-free surface as the best of the others (docs/denoising.md#the-input-as-a-candidate).
     result.keptInput = true;

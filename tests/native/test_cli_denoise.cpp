@@ -201,4 +201,9 @@ TEST_CASE("cli: denoise leaves a mesh no candidate would improve as it was and s
   CHECK_THAT(r.err, Catch::Contains(said));
   CHECK_THAT(r.err, !Catch::Contains("chosen by SURE"));
   CHECK(offVertexLines(dir / "twice.off") == offVertexLines(dir / "once.off"));
+  // Outliers asked to be corrected in any case are corrected: the rule does not overrule --impulse on.
+  r = geoshiftCli("denoise " + q(dir / "once.off") + " -o " + q(dir / "forced.off") + " --impulse on");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, !Catch::Contains(said));
+  CHECK_THAT(r.err, Catch::Contains("outliers (--impulse on) corrected"));
 }

@@ -125,8 +125,9 @@ struct DenoiseOptions {
   // error to fit, a divergence of one a vertex). Where no other candidate ranks below it, the input
   // is returned as it was, and the outlier correction does not run: on a clean or already denoised
   // mesh every candidate takes more of the shape than of the noise, and the correction would take
-  // its creases and corners, which stand out like outliers, for the noise
-  // (docs/denoising.md#the-input-as-a-candidate). false: the best of the others, always.
+  // its creases and corners, which stand out like outliers, for the noise. Not where the correction
+  // is asked for in any case (impulseKurtosis 0) (docs/denoising.md#the-input-as-a-candidate).
+  // false: the best of the others, always.
   bool inputCandidate = true;
   // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
   // refined from the candidates (the least variance a good one implies) and they are ranked again
