@@ -94,7 +94,7 @@ SurfacePoint sourcePoint(const Source& s, const Loaded& l) {
                      " faces in " + part.label + ")");
   const int mf = l.meshFace(f);
   if (mf < 0) throw InputError(s.file + ": face " + std::to_string(f) + " is degenerate and was dropped");
-  return SurfacePoint::inFace(l.mesh(), mf, Vec3(s.bary[0], s.bary[1], s.bary[2]));
+  return SurfacePoint::inFace(l.mesh(), mf, l.mesh().inputCornerOrder(mf, Vec3(s.bary[0], s.bary[1], s.bary[2])));
 }
 
 // Enough to reach every vertex: no geodesic is longer than all edges laid end to end.
@@ -222,17 +222,18 @@ Command addExpMap(CLI::App& app) {
             if (!v.allFinite()) throw InputError("the vector must be finite");
             const ExpMapResult r = expMap(*l.geometry, start, v);
             const int face = l.mesh().inputFace(r.end.face);
+            const Vec3 bary = l.mesh().inputCornerOrder(r.end.face, Vec3(r.end.bary[0], r.end.bary[1], r.end.bary[2]));
             const Vec3 p = r.end.position(l.mesh());
             if (a->json) {
               const nlohmann::ordered_json j = {{"face", face},
-                                        {"bary", {r.end.bary[0], r.end.bary[1], r.end.bary[2]}},
+                                        {"bary", {bary[0], bary[1], bary[2]}},
                                         {"point", {p.x(), p.y(), p.z()}},
                                         {"hitBoundary", r.hitBoundary}};
               std::printf("%s\n", j.dump().c_str());
               return;
             }
             std::printf("face %d bary %.17g %.17g %.17g\npoint %.17g %.17g %.17g\nhitBoundary %s\nlength %.17g\n", face,
-                        r.end.bary[0], r.end.bary[1], r.end.bary[2], p.x(), p.y(), p.z(),
+                        bary[0], bary[1], bary[2], p.x(), p.y(), p.z(),
                         r.hitBoundary ? "true" : "false", r.length / l.unit);
           }};
 }

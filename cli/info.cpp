@@ -55,6 +55,7 @@ void printPart(const Document& doc, const MeshPart& part, int levels) {
   std::printf("\n");
   std::printf("  degenerate faces    %d (repeated index %d, zero area %d)\n",
               r.repeatedIndexFaces + r.zeroAreaFaces, r.repeatedIndexFaces, r.zeroAreaFaces);
+  std::printf("  re-oriented faces   %d\n", r.reorientedFaces);
   std::printf("  non-manifold        %d edges, %d vertices (split into %d extra)\n", r.nonManifoldEdges,
               r.nonManifoldVertices, r.splitVertexCopies);
   std::printf("  isolated vertices   %d\n", r.isolatedVertices);

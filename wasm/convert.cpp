@@ -76,6 +76,7 @@ val reportToJs(const BuildReport& report) {
   r.set("weldedVertices", report.weldedVertices);
   r.set("repeatedIndexFaces", report.repeatedIndexFaces);
   r.set("zeroAreaFaces", report.zeroAreaFaces);
+  r.set("reorientedFaces", report.reorientedFaces);
   r.set("nonManifoldEdges", report.nonManifoldEdges);
   r.set("nonManifoldVertices", report.nonManifoldVertices);
   r.set("splitVertexCopies", report.splitVertexCopies);

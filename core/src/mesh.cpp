@@ -112,6 +112,12 @@ Mesh::Mesh(std::vector<Vec3> positions, const std::vector<Face>& faces, BuildRep
     edges[h] = {std::min(a, b) << 32 | std::max(a, b), h};
   }
   std::sort(edges.begin(), edges.end());
+  if (const std::vector<int> flipped = orientCoherently(edges); !flipped.empty()) {
+    r.reorientedFaces = static_cast<int>(flipped.size());
+    r.messages.push_back("re-oriented " + std::to_string(flipped.size()) +
+                         " face(s) to agree with their neighbours (each piece keeps the orientation of most of its faces): " +
+                         listSome(flipped, [&](int f) { return describeInput(inputFace(f)); }));
+  }
   std::vector<std::pair<int, int>> badEdges;
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
@@ -151,6 +157,84 @@ Mesh::Mesh(std::vector<Vec3> positions, const std::vector<Face>& faces, BuildRep
   }
 
   buildFans(r);
+}
+
+// Faces that disagree with a neighbour across an edge of exactly two faces (both run a->b; a face
+// and its duplicate do not count) are flipped, so that such an edge is joined rather than cut. Faces joined by those edges form
+// pieces; within a piece, which faces must flip relative to which is a parity kept by a
+// union-find, and of its two consistent orientations the piece takes the one most of its faces
+// already have (on a tie, that of its first face). A piece that cannot be oriented (a Moebius
+// strip) keeps its first consistent assignment; the edges left in disagreement are cut as
+// before. `edges` (sorted undirected keys with their half-edges) is updated for the flips.
+// Returns the faces flipped, in index order. docs/denoising.md#bad-input.
+std::vector<int> Mesh::orientCoherently(std::vector<std::pair<std::uint64_t, int>>& edges) {
+  const int nf = faceCount();
+  std::vector<int> parent(nf);
+  std::vector<char> parity(nf, 0);  // of a face relative to its parent: 1 if exactly one of them flips
+  for (int f = 0; f < nf; ++f) parent[f] = f;
+  auto find = [&](int x) {
+    int root = x;
+    char p = 0;
+    while (parent[root] != root) {
+      p ^= parity[root];
+      root = parent[root];
+    }
+    char toRoot = p;
+    for (int y = x; parent[y] != root && parent[y] != y;) {
+      const int next = parent[y];
+      const char own = parity[y];
+      parent[y] = root;
+      parity[y] = toRoot;
+      toRoot ^= own;
+      y = next;
+    }
+    return std::pair<int, char>(root, p);
+  };
+  bool disagree = false;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    const int ha = edges[i].second, hb = edges[i + 1 < j ? i + 1 : i].second;
+    // Two faces on the edge, not a face and its duplicate (the same corners: that edge stays cut).
+    if (j - i == 2 && faces_[ha / 3][(ha % 3 + 2) % 3] != faces_[hb / 3][(hb % 3 + 2) % 3]) {
+      const char d = tail(ha) == tail(hb);  // both run a->b: one of the two faces must flip
+      disagree = disagree || d;
+      auto [ra, pa] = find(ha / 3);
+      auto [rb, pb] = find(hb / 3);
+      if (ra != rb) {
+        if (rb < ra) std::swap(ra, rb);
+        parent[rb] = ra;  // the lower index is the root: the same forest for any thread or order
+        parity[rb] = static_cast<char>(pa ^ pb ^ d);
+      }
+    }
+    i = j;
+  }
+  if (!disagree) return {};
+  // Per root: the balance of faces that would flip against those that would not, and whether its
+  // first face (the root itself: the lowest index of the piece) would.
+  std::vector<int> balance(nf, 0);
+  for (int f = 0; f < nf; ++f) {
+    const auto [root, p] = find(f);
+    balance[root] += p ? 1 : -1;
+  }
+  std::vector<int> flipped;
+  for (int f = 0; f < nf; ++f) {
+    const auto [root, p] = find(f);
+    const bool invert = balance[root] > 0;  // most of the piece would flip: flip the rest instead
+    if (p != invert) flipped.push_back(f);
+  }
+  if (flipped.empty()) return {};
+  for (int f : flipped) {
+    std::swap(faces_[f][1], faces_[f][2]);
+    inputFace_[f] = -1 - inputFace_[f];  // inputFlipped(f)
+  }
+  // Face f's half-edge k joins the corners of its half-edge 2 - k before the flip, reversed.
+  std::vector<char> isFlipped(nf, 0);
+  for (int f : flipped) isFlipped[f] = 1;
+  for (auto& [key, h] : edges)
+    if (isFlipped[h / 3]) h = 3 * (h / 3) + 2 - h % 3;
+  std::sort(edges.begin(), edges.end());
+  return flipped;
 }
 
 Mesh Mesh::withTwins(std::vector<Vec3> positions, std::vector<Face> faces, std::vector<int> twins,
@@ -402,17 +486,18 @@ MeshBuild buildMesh(const TriangleSoup& soup, const MeshBuildOptions& options) {
   for (int f = 0; f < m.faceCount(); ++f) {
     const Face& caller = soup.faces[m.inputFace(f)];
     for (int k = 0; k < 3; ++k) {
-      int& at = first[caller[k]];
+      int& at = first[caller[m.inputCorner(f, k)]];
       if (at < 0) at = m.face(f)[k];
-      if (at != m.face(f)[k]) severalPieces[caller[k]] = 1;
+      if (at != m.face(f)[k]) severalPieces[caller[m.inputCorner(f, k)]] = 1;
     }
   }
   std::vector<std::pair<int, int>> incidences;  // (caller vertex, mesh vertex), for those with several pieces
   for (int f = 0; f < m.faceCount(); ++f) {
     const Face& caller = soup.faces[m.inputFace(f)];
     for (int k = 0; k < 3; ++k) {
-      if (severalPieces[caller[k]]) incidences.emplace_back(caller[k], m.face(f)[k]);
-      else result.vertexOf[caller[k]] = m.face(f)[k];
+      const int c = caller[m.inputCorner(f, k)];
+      if (severalPieces[c]) incidences.emplace_back(c, m.face(f)[k]);
+      else result.vertexOf[c] = m.face(f)[k];
     }
   }
   std::sort(incidences.begin(), incidences.end());

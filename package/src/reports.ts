@@ -11,7 +11,9 @@ export interface BuildReport {
   repeatedIndexFaces: number;
   /** Faces dropped because their corners are collinear. */
   zeroAreaFaces: number;
-  /** Edges with more than two faces or inconsistent orientation; cut apart. */
+  /** Faces turned over to agree with their neighbours (each piece keeps the orientation of most of its faces). */
+  reorientedFaces: number;
+  /** Edges with more than two faces, or of two faces whose orientations could not be made to agree; cut apart. */
   nonManifoldEdges: number;
   /** Vertices whose faces form several fans; split. */
   nonManifoldVertices: number;

@@ -55,7 +55,7 @@ struct Geodesics {
       throw InputError("face " + std::to_string(f) + " is out of range (" + std::to_string(meshFaceOf.size()) + " faces)");
     const int mf = meshFaceOf[f];
     if (mf < 0) throw InputError("face " + std::to_string(f) + " is degenerate and was dropped");
-    return SurfacePoint::inFace(mesh, mf, Vec3(bary[0], bary[1], bary[2]));
+    return SurfacePoint::inFace(mesh, mf, mesh.inputCornerOrder(mf, Vec3(bary[0], bary[1], bary[2])));
   }
 };
 
@@ -121,7 +121,8 @@ void bindGeodesics(py::module_& m) {
         const Mesh& mesh = g.built->mesh();
         py::dict out;
         out["face"] = mesh.inputFace(r.end.face);
-        out["bary"] = py::make_tuple(r.end.bary[0], r.end.bary[1], r.end.bary[2]);
+        const Vec3 bary = mesh.inputCornerOrder(r.end.face, Vec3(r.end.bary[0], r.end.bary[1], r.end.bary[2]));
+        out["bary"] = py::make_tuple(bary[0], bary[1], bary[2]);
         const Vec3 q = r.end.position(mesh);
         out["point"] = py::make_tuple(q.x(), q.y(), q.z());
         out["hit_boundary"] = r.hitBoundary;

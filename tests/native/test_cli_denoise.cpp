@@ -1,6 +1,7 @@
 // geoshift denoise, run as a user runs it.
 #include <catch2/catch.hpp>
 
+#include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -112,6 +113,50 @@ TEST_CASE("cli: denoise leaves pieces too small to denoise as they were and says
   REQUIRE(r.code == 0);
   CHECK_THAT(r.err, Catch::Contains("geoshift: nothing denoised: 1 piece of fewer than 50 vertices (4 vertices) kept as it was"));
   CHECK(offVertexLines(dir / "tetra-out.off") == offVertexLines(dir / "tetra.off"));
+}
+
+// A file wound inconsistently (every seventh face given the other way round, as some exporters
+// write) is the same surface: its faces are turned to agree, the note says how many, the result is
+// the consistently wound file's to the digit, and the faces are written back as the file gave them.
+TEST_CASE("cli: denoise turns faces wound against their neighbours and says so", "[cli][denoise][orientation]") {
+  const fs::path dir = tempDir("cli-denoise-orientation");
+  writeOff(dir / "clean.off", shapes::icosphere(3));
+  REQUIRE(geoshiftCli("noise " + q(dir / "clean.off") + " -o " + q(dir / "noisy.off") + " --amount 0.3 --seed 2").code == 0);
+  std::istringstream in(slurp(dir / "noisy.off"));
+  std::ostringstream mixed;
+  std::string line;
+  std::getline(in, line);
+  mixed << line << "\n";
+  std::getline(in, line);
+  mixed << line << "\n";
+  const int nv = std::stoi(line), nf = std::stoi(line.substr(line.find(' ')));
+  for (int v = 0; v < nv && std::getline(in, line); ++v) mixed << line << "\n";
+  std::vector<std::string> givenFaces;
+  for (int f = 0; f < nf; ++f) {
+    int k = 0, a = 0, b = 0, c = 0;
+    in >> k >> a >> b >> c;
+    givenFaces.push_back("3 " + std::to_string(a) + " " + std::to_string(f % 7 == 3 ? c : b) + " " +
+                         std::to_string(f % 7 == 3 ? b : c));
+    mixed << givenFaces.back() << "\n";
+  }
+  {
+    std::ofstream(dir / "mixed.off") << mixed.str();
+  }
+  Run r = geoshiftCli("denoise " + q(dir / "noisy.off") + " -o " + q(dir / "out.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, !Catch::Contains("re-oriented"));
+  r = geoshiftCli("denoise " + q(dir / "mixed.off") + " -o " + q(dir / "mixed-out.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("re-oriented " + std::to_string((nf + 3) / 7) + " face(s) to agree with their neighbours"));
+  CHECK_THAT(r.err, !Catch::Contains("non-manifold"));
+  CHECK_THAT(r.err, !Catch::Contains("kept as"));
+  CHECK(offVertexLines(dir / "mixed-out.off") == offVertexLines(dir / "out.off"));
+  std::istringstream written(slurp(dir / "mixed-out.off"));
+  for (int i = 0; i < nv + 2; ++i) std::getline(written, line);
+  for (int f = 0; f < nf && std::getline(written, line); ++f) {
+    CAPTURE(f);
+    CHECK(line == givenFaces[f]);
+  }
 }
 
 TEST_CASE("cli: denoise removes noise with every method and says what it did", "[cli][denoise]") {

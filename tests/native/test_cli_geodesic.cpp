@@ -78,6 +78,39 @@ TEST_CASE("cli: logmap on a plane gives Euclidean polar coordinates, expmap walk
   REQUIRE(checked > 2);
 }
 
+// A face point is given and reported in the file's corners, also on a face the build turned over
+// to agree with its neighbours (docs/denoising.md#bad-input).
+TEST_CASE("cli: expmap face points on faces wound backwards use the file's corners", "[cli][geodesic][orientation]") {
+  const fs::path dir = tempDir("cli-facepoint-orientation");
+  const TriangleSoup grid = shapes::grid(21, 0.1);
+  TriangleSoup mixed = grid;
+  for (size_t f = 6; f < mixed.faces.size(); f += 7) std::swap(mixed.faces[f][1], mixed.faces[f][2]);  // face 300 among them
+  writeOff(dir / "plane.off", grid);
+  writeOff(dir / "mixed.off", mixed);
+  const auto walk = [&](const std::string& file, const std::string& bary, const std::string& vector = "2.5,1.5") {
+    const Run r = geoshiftCli("expmap " + q(dir / file) + " --face 300 --bary " + bary + " --vector=" + vector + " --json");
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    return nlohmann::json::parse(r.out);
+  };
+  // The same point: (0.2, 0.3, 0.5) of face 300's corners, which the mixed file lists as 0, 2, 1.
+  const auto a = walk("plane.off", "0.2,0.3,0.5"), b = walk("mixed.off", "0.2,0.5,0.3");
+  const Vec3 pa(a["point"][0], a["point"][1], a["point"][2]), pb(b["point"][0], b["point"][1], b["point"][2]);
+  REQUIRE((pa - pb).norm() < 1e-12);
+  REQUIRE(a["face"] == b["face"]);
+  // The end's barycentric coordinates weigh the file's corners of the end face, as the file lists
+  // them: after the long walk, and after a short one that ends in face 300, a face turned over.
+  const auto shortA = walk("plane.off", "0.2,0.3,0.5", "0.01,0.01"), shortB = walk("mixed.off", "0.2,0.5,0.3", "0.01,0.01");
+  REQUIRE(shortB["face"] == 300);
+  for (const auto& [j, soup] : {std::pair{a, grid}, std::pair{b, mixed}, std::pair{shortA, grid}, std::pair{shortB, mixed}}) {
+    const Face& f = soup.faces[j["face"].get<int>()];
+    const Vec3 fromBary = j["bary"][0].get<double>() * soup.positions[f[0]] + j["bary"][1].get<double>() * soup.positions[f[1]] +
+                          j["bary"][2].get<double>() * soup.positions[f[2]];
+    const Vec3 point(j["point"][0], j["point"][1], j["point"][2]);
+    REQUIRE((fromBary - point).norm() < 1e-12);
+  }
+}
+
 TEST_CASE("cli: logmap and expmap from a face point, lengths in AEL by default", "[cli][geodesic]") {
   const fs::path dir = tempDir("cli-facepoint");
   const TriangleSoup grid = shapes::grid(21, 0.1);

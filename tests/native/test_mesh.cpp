@@ -6,6 +6,7 @@
 #include <set>
 
 #include "geoshift/error.hpp"
+#include "geoshift/geometry.hpp"
 #include "geoshift/mesh.hpp"
 #include "geoshift/shapes.hpp"
 
@@ -217,12 +218,91 @@ TEST_CASE("an edge with three faces is cut, never a crash", "[mesh][nonmanifold]
   }
 }
 
-TEST_CASE("faces of opposite orientation on one edge count as non-manifold", "[mesh][nonmanifold]") {
+TEST_CASE("a face of opposite orientation to its neighbour is flipped and the edge joined", "[mesh][orientation]") {
   const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}};
   MeshBuild b = buildMesh(soup(p, {{0, 1, 2}, {0, 1, 3}}));
-  REQUIRE(b.report.nonManifoldEdges == 1);
+  REQUIRE(b.report.reorientedFaces == 1);
+  REQUIRE(b.report.nonManifoldEdges == 0);
+  REQUIRE_FALSE(b.report.clean());
   checkConnectivity(b.mesh);
-  for (int h = 0; h < b.mesh.halfedgeCount(); ++h) REQUIRE(b.mesh.twin(h) < 0);
+  // On a tie the first face keeps its orientation; the second turns to agree with it.
+  REQUIRE(b.mesh.face(0) == Face{0, 1, 2});
+  REQUIRE(b.mesh.face(1) == Face{0, 3, 1});
+  REQUIRE(faceNormals(b.mesh)[0].dot(faceNormals(b.mesh)[1]) > 0.99);
+  int joined = 0;
+  for (int h = 0; h < b.mesh.halfedgeCount(); ++h) joined += b.mesh.twin(h) >= 0;
+  REQUIRE(joined == 2);
+}
+
+TEST_CASE("a closed surface wound inconsistently is re-oriented to its majority", "[mesh][orientation]") {
+  const TriangleSoup sphere = shapes::icosphere(2);
+  const MeshBuild reference = buildMesh(sphere);
+  REQUIRE(reference.report.clean());
+  for (const int every : {7, 2}) {  // a seventh of the faces flipped, then half of them
+    TriangleSoup mixed = sphere;
+    int flips = 0;
+    for (size_t f = 0; f < mixed.faces.size(); f += every, ++flips) std::swap(mixed.faces[f][1], mixed.faces[f][2]);
+    const MeshBuild b = buildMesh(mixed);
+    CAPTURE(every);
+    REQUIRE(b.report.reorientedFaces == std::min<int>(flips, static_cast<int>(sphere.faces.size()) - flips));
+    REQUIRE(b.report.nonManifoldEdges == 0);
+    REQUIRE(b.report.nonManifoldVertices == 0);
+    checkConnectivity(b.mesh);
+    REQUIRE(b.mesh.boundaryLoops().empty());
+    // Each caller vertex maps to its own mesh vertex, and each mesh corner to the caller's corner
+    // it came from, whichever way its face was turned.
+    for (size_t i = 0; i < mixed.positions.size(); ++i) REQUIRE(b.mesh.position(b.vertexOf[i]) == mixed.positions[i]);
+    int turned = 0;
+    for (int f = 0; f < b.mesh.faceCount(); ++f) {
+      const Face& given = mixed.faces[b.mesh.inputFace(f)];
+      turned += b.mesh.inputFlipped(f);
+      for (int k = 0; k < 3; ++k) REQUIRE(b.mesh.face(f)[k] == b.vertexOf[given[b.mesh.inputCorner(f, k)]]);
+      const Vec3 bary(0.2, 0.3, 0.5);
+      REQUIRE(b.mesh.inputCornerOrder(f, b.mesh.inputCornerOrder(f, bary)) == bary);
+    }
+    REQUIRE(turned == b.report.reorientedFaces);
+    if (every == 7) {
+      // The flipped faces are turned back: the mesh is the consistently wound one, face for face.
+      REQUIRE(b.mesh.faces() == reference.mesh.faces());
+    } else {
+      // Half flipped, the other half kept: a tie, so the first face's (flipped) orientation wins
+      // and every face ends reversed against the reference, consistently.
+      for (int f = 0; f < b.mesh.faceCount(); ++f)
+        REQUIRE(faceNormals(b.mesh)[f].dot(faceNormals(reference.mesh)[f]) < -0.99);
+    }
+  }
+  // Most faces flipped: the piece takes their orientation and the few others turn.
+  TriangleSoup most = sphere;
+  for (size_t f = 0; f < most.faces.size(); ++f)
+    if (f % 5 != 0) std::swap(most.faces[f][1], most.faces[f][2]);
+  const MeshBuild m = buildMesh(most);
+  REQUIRE(m.report.reorientedFaces == static_cast<int>((sphere.faces.size() + 4) / 5));
+  for (int f = 0; f < m.mesh.faceCount(); ++f) REQUIRE(faceNormals(m.mesh)[f].dot(faceNormals(reference.mesh)[f]) < -0.99);
+}
+
+TEST_CASE("a Moebius strip cannot be oriented: the disagreeing edge is cut as before", "[mesh][orientation]") {
+  // A strip of 2n triangles around a circle, given a half turn, so that its ends meet reversed.
+  const int n = 12;
+  std::vector<Vec3> p;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n, t = a / 2;
+    const Vec3 centre(std::cos(a), std::sin(a), 0), radial = centre, up(0, 0, 1);
+    const Vec3 across = 0.3 * (std::cos(t) * radial + std::sin(t) * up);
+    p.push_back(centre + across);
+    p.push_back(centre - across);
+  }
+  std::vector<Face> faces;
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i, b = 2 * i + 1;
+    int c = 2 * ((i + 1) % n), d = c + 1;
+    if (i == n - 1) std::swap(c, d);  // the half turn: the last quad joins the first one's vertices swapped
+    faces.push_back({a, b, d});
+    faces.push_back({a, d, c});
+  }
+  const MeshBuild b = buildMesh(soup(p, faces));
+  REQUIRE(b.report.nonManifoldEdges >= 1);
+  checkConnectivity(b.mesh);
+  REQUIRE(b.mesh.faceCount() == 2 * n);
 }
 
 TEST_CASE("a vertex shared by two fans is split and the caller map follows the faces", "[mesh][nonmanifold]") {

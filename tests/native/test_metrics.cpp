@@ -144,8 +144,9 @@ TEST_CASE("mean normal angle error", "[metrics][normals]") {
   const Mesh m = build(shapes::icosphere(2));
   CHECK(meanNormalAngleError(m, m) == 0.0);
 
-  // Tetrahedron with one face flipped: that face is off by 180°, the other three by 0.
-  TriangleSoup tet = shapes::tetrahedron();
+  // Tetrahedron with one face flipped: that face is off by 180°, the other three by 0. Its faces
+  // share no vertex, so the mesh has no neighbour to turn the flipped face back by.
+  TriangleSoup tet = shapes::unwelded(shapes::tetrahedron());
   const Mesh reference(tet.positions, tet.faces);
   std::swap(tet.faces[0][1], tet.faces[0][2]);
   const Mesh flipped(tet.positions, tet.faces);

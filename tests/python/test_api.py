@@ -157,6 +157,23 @@ def test_geodesics_walk_back_to_the_vertex(terrain):
     np.testing.assert_allclose(e["point"], terrain.positions[2081], atol=1e-6 * g.average_edge_length)
 
 
+def test_face_points_on_faces_wound_backwards_use_the_callers_corners(terrain):
+    """A face the build turns over to agree with its neighbours keeps the caller's corners for face
+    points given and reported (docs/denoising.md#bad-input)."""
+    mixed_faces = terrain.faces.copy()
+    mixed_faces[6::7] = mixed_faces[6::7][:, [0, 2, 1]]
+    mixed = geoshift.Mesh(terrain.positions, mixed_faces)
+    face = 300 - 300 % 7 + 6  # one of the faces given the other way round
+    a = geoshift.exp_map(terrain, (face, (0.2, 0.3, 0.5)), (0.01, 0.01))
+    b = geoshift.exp_map(mixed, (face, (0.2, 0.5, 0.3)), (0.01, 0.01))
+    assert b["face"] == a["face"] == face
+    scale = np.abs(terrain.positions).max()
+    np.testing.assert_allclose(b["point"], a["point"], rtol=0, atol=1e-12 * scale)
+    for result, faces in ((a, terrain.faces), (b, mixed_faces)):
+        corners = terrain.positions[faces[result["face"]]]
+        np.testing.assert_allclose(np.asarray(result["bary"]) @ corners, result["point"], rtol=0, atol=1e-12 * scale)
+
+
 def test_denoise_keywords_are_the_cli_and_wasm_request(terrain):
     """The request's parameters in snake_case are checked by the core as the CLI and the wasm op
     check them (tests/wasm/denoise-requests.test.mjs compares the three on one table)."""

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -33,14 +34,15 @@ struct BuildReport {
   int repeatedIndexFaces = 0;      // dropped: a face that uses one vertex twice
   int zeroAreaFaces = 0;           // dropped: collinear corners
   std::vector<int> droppedFaces;   // input face indices of the two kinds above
-  int nonManifoldEdges = 0;        // edges with more than two faces or inconsistent orientation: cut
+  int reorientedFaces = 0;         // flipped to agree with their neighbours (the piece's majority kept)
+  int nonManifoldEdges = 0;        // edges with more than two faces, or of two faces left disagreeing: cut
   int nonManifoldVertices = 0;     // vertices whose faces form several fans: split
   int splitVertexCopies = 0;       // vertices added by that split
   int isolatedVertices = 0;        // referenced by no face: kept, left untouched by filters
   std::vector<std::string> messages;
 
   bool clean() const {
-    return repeatedIndexFaces == 0 && zeroAreaFaces == 0 && nonManifoldEdges == 0 &&
+    return repeatedIndexFaces == 0 && zeroAreaFaces == 0 && reorientedFaces == 0 && nonManifoldEdges == 0 &&
            nonManifoldVertices == 0;
   }
 };
@@ -76,7 +78,17 @@ class Mesh {
   const Face& face(int f) const { return faces_[f]; }
   const std::vector<Face>& faces() const { return faces_; }
   // The caller's face index of mesh face f (faces may have been dropped).
-  int inputFace(int f) const { return inputFace_[f]; }
+  int inputFace(int f) const { return inputFace_[f] < 0 ? -1 - inputFace_[f] : inputFace_[f]; }
+  // Whether mesh face f is the caller's face turned over to agree with its neighbours
+  // (BuildReport::reorientedFaces): then its corners 1 and 2 are the caller's 2 and 1.
+  bool inputFlipped(int f) const { return inputFace_[f] < 0; }
+  // The caller's corner (0, 1, 2 of its face inputFace(f)) that mesh face f has as corner k.
+  int inputCorner(int f, int k) const { return inputFlipped(f) && k > 0 ? 3 - k : k; }
+  // Per-corner values of mesh face f (barycentric coordinates) in the caller's corner order, or the
+  // caller's in the mesh's: the same swap either way.
+  Vec3 inputCornerOrder(int f, const Vec3& perCorner) const {
+    return inputFlipped(f) ? Vec3(perCorner[0], perCorner[2], perCorner[1]) : perCorner;
+  }
 
   // --- half-edges ---
   static int faceOf(int h) { return h / 3; }
@@ -122,10 +134,11 @@ class Mesh {
  private:
   // Vertex half-edges, splitting a vertex whose faces form several fans (one copy per extra fan).
   void buildFans(BuildReport& r);
+  std::vector<int> orientCoherently(std::vector<std::pair<std::uint64_t, int>>& edges);
 
   std::vector<Vec3> positions_;
   std::vector<Face> faces_;
-  std::vector<int> inputFace_;
+  std::vector<int> inputFace_;  // -1 - index for a face turned over (inputFlipped)
   std::vector<int> twin_;
   std::vector<int> vertexHalfedge_;
   std::vector<int> originalVertex_;
