@@ -84,3 +84,23 @@ test('a welded input is left as it is', () => {
     for (let v = 0; v < 36; ++v) assert.equal(r[name][welded.vertexOf[v]], welded[name][v], `${name} at ${v}`);
   }
 });
+
+// A cube glTF-style (unwelded) with two faces written the other way round: they are turned to
+// agree with their neighbours (docs/denoising.md#bad-input), counted, and named in the messages,
+// and the curvature is the consistently wound cube's.
+test('faces wound against their neighbours are turned over and reported', () => {
+  const cube = unweldedCube();
+  const mixed = Uint32Array.from(cube.indices);
+  for (const f of [1, 6]) [mixed[3 * f + 1], mixed[3 * f + 2]] = [mixed[3 * f + 2], mixed[3 * f + 1]];
+  const r = geoshift.loadMesh(cube.positions, mixed);
+  assert.equal(r.ok, true, r.error);
+  geoshift.freeMesh(r.handle);
+  assert.equal(r.report.reorientedFaces, 2);
+  assert.equal(r.report.nonManifoldEdges, 0);
+  assert.ok(r.report.messages.some((m) => m.startsWith('re-oriented 2 face(s) to agree with their neighbours')), r.report.messages.join('\n'));
+  const consistent = geoshift.loadMesh(cube.positions, cube.indices);
+  assert.equal(consistent.report.reorientedFaces, 0);
+  geoshift.freeMesh(consistent.handle);
+  const a = curvaturesOf(cube.positions, cube.indices), b = curvaturesOf(cube.positions, mixed);
+  assert.deepEqual(b.meanCurvature, a.meanCurvature);
+});
