@@ -160,13 +160,13 @@ Mesh::Mesh(std::vector<Vec3> positions, const std::vector<Face>& faces, BuildRep
 }
 
 // Faces that disagree with a neighbour across an edge of exactly two faces (both run a->b; a face
-// and its duplicate do not count) are flipped, so that such an edge is joined rather than cut. Faces joined by those edges form
-// pieces; within a piece, which faces must flip relative to which is a parity kept by a
-// union-find, and of its two consistent orientations the piece takes the one most of its faces
-// already have (on a tie, that of its first face). A piece that cannot be oriented (a Moebius
-// strip) keeps its first consistent assignment; the edges left in disagreement are cut as
-// before. `edges` (sorted undirected keys with their half-edges) is updated for the flips.
-// Returns the faces flipped, in index order. docs/denoising.md#bad-input.
+// and its duplicate do not count) are flipped, so that such an edge is joined rather than cut.
+// Faces joined by those edges form pieces; within a piece, which faces must flip relative to
+// which is a parity kept by a union-find, and of its two consistent orientations the piece takes
+// the one most of its faces already have (on a tie, that of its first face). A piece that cannot
+// be oriented (a Moebius strip) keeps its first consistent assignment; the edges left in
+// disagreement are cut as before. `edges` (sorted undirected keys with their half-edges) is
+// updated for the flips. Returns the faces flipped, in index order. docs/denoising.md#bad-input.
 std::vector<int> Mesh::orientCoherently(std::vector<std::pair<std::uint64_t, int>>& edges) {
   const int nf = faceCount();
   std::vector<int> parent(nf);
@@ -203,15 +203,15 @@ std::vector<int> Mesh::orientCoherently(std::vector<std::pair<std::uint64_t, int
       auto [rb, pb] = find(hb / 3);
       if (ra != rb) {
         if (rb < ra) std::swap(ra, rb);
-        parent[rb] = ra;  // the lower index is the root: the same forest for any thread or order
+        parent[rb] = ra;  // the lower index is the root: a piece's root is its first face
         parity[rb] = static_cast<char>(pa ^ pb ^ d);
       }
     }
     i = j;
   }
   if (!disagree) return {};
-  // Per root: the balance of faces that would flip against those that would not, and whether its
-  // first face (the root itself: the lowest index of the piece) would.
+  // Per root: the faces that differ from the root against those that agree with it. The root keeps
+  // its orientation unless most of its piece differs from it.
   std::vector<int> balance(nf, 0);
   for (int f = 0; f < nf; ++f) {
     const auto [root, p] = find(f);
@@ -220,7 +220,7 @@ std::vector<int> Mesh::orientCoherently(std::vector<std::pair<std::uint64_t, int
   std::vector<int> flipped;
   for (int f = 0; f < nf; ++f) {
     const auto [root, p] = find(f);
-    const bool invert = balance[root] > 0;  // most of the piece would flip: flip the rest instead
+    const bool invert = balance[root] > 0;  // most of the piece differs from its root: they stay
     if (p != invert) flipped.push_back(f);
   }
   if (flipped.empty()) return {};
