@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <unordered_map>
 #include <utility>
@@ -40,6 +41,27 @@ void requireFinite(const std::vector<Vec3>& positions) {
   }
 }
 
+// A face's area takes its edges' lengths to the fourth power, which overflows double precision
+// beyond about 1e77 and underflows below about 1e-77: a mesh whose faces span more than 1e75 or
+// less than 1e-75 (its used vertices' bounding box, longest side) is refused with its size, rather
+// than read as all degenerate or filtered with infinite areas. docs/denoising.md#bad-input.
+void requireRepresentableSize(const std::vector<Vec3>& positions, const std::vector<Face>& faces) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Face& f : faces)
+    for (int v : f) {
+      lo = lo.cwiseMin(positions[v]);
+      hi = hi.cwiseMax(positions[v]);
+    }
+  const double side = (hi - lo).maxCoeff();
+  if (side > 1e75 || (side > 0 && side < 1e-75)) {
+    std::ostringstream s;
+    s << "the faces span " << side << " (the longest side of their bounding box): "
+      << "areas and normals are computed in double precision for meshes between 1e-75 and 1e75 across; "
+      << "scale the mesh " << (side > 1 ? "down" : "up");
+    throw InputError(s.str());
+  }
+}
+
 void requireValidFaces(const std::vector<Face>& faces, size_t vertexCount) {
   if (vertexCount == 0) throw InputError("empty mesh: no vertices");
   if (faces.empty()) throw InputError("no triangles: the mesh has vertices but no faces");
@@ -70,6 +92,7 @@ Mesh::Mesh(std::vector<Vec3> positions, const std::vector<Face>& faces, BuildRep
     : positions_(std::move(positions)) {
   requireValidFaces(faces, positions_.size());
   requireFinite(positions_);
+  requireRepresentableSize(positions_, faces);
   BuildReport local;
   BuildReport& r = report ? *report : local;
 

@@ -186,6 +186,23 @@ TEST_CASE("degenerate faces are dropped, counted and reported", "[mesh][errors]"
   // a needle is not degenerate
   MeshBuild needle = buildMesh(soup({{0, 0, 0}, {1, 0, 0}, {0.5, 1e-5, 0}}, {{0, 1, 2}}));
   REQUIRE(needle.mesh.faceCount() == 1);
+  // Far outside double precision's range for areas (1e100: infinite areas; 1e-100: every face of
+  // zero area) the mesh is refused with its size.
+  for (const double scale : {1e30, 1e-30, 1e100, 1e-100}) {
+    const std::vector<Vec3> t = {{0, 0, 0}, {scale, 0, 0}, {0, scale, 0}};
+    CAPTURE(scale);
+    if (scale > 1e-75 && scale < 1e75) {
+      REQUIRE(buildMesh(soup(t, {{0, 1, 2}})).mesh.faceCount() == 1);
+    } else {
+      REQUIRE_THROWS_WITH(buildMesh(soup(t, {{0, 1, 2}})),
+                          Catch::Contains("the faces span 1e") && Catch::Contains(scale > 1 ? "scale the mesh down" : "scale the mesh up"));
+    }
+  }
+  // Far-off coordinates are fine where the faces' extent is: only the differences are squared.
+  std::vector<Vec3> far = {{1e200, 0, 0}, {1e200 + 1e185, 0, 0}, {1e200, 1e185, 0}};
+  REQUIRE_THROWS_WITH(buildMesh(soup(far, {{0, 1, 2}})), Catch::Contains("the faces span 1") && Catch::Contains("e+185 "));
+  far = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1e200, 0, 0}};  // a vertex no face uses is not counted
+  REQUIRE(buildMesh(soup(far, {{0, 1, 2}})).mesh.faceCount() == 1);
 }
 
 TEST_CASE("an edge with three faces is cut, never a crash", "[mesh][nonmanifold]") {
