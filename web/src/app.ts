@@ -4,7 +4,7 @@
 // message; the files the app ships (the sample, the gallery) are not, so that the first view does
 // not wait for the WebAssembly module.
 
-import { checkWithCore, CoreReadError, type CoreReader } from './core-check';
+import { checkWithCore, CoreReadError, repairsOf, type CoreReader } from './core-check';
 import { describeLoadFailure, loadModel, LoadError, type LoadedModel, type MeshCounts } from './loaders';
 import type { StatusLine } from './status';
 import type { Viewer } from './viewer';
@@ -68,7 +68,7 @@ export class App {
     const run = async (): Promise<void> => {
       try {
         const data = await read();
-        if (checkWithTheCore && this.core) await checkWithCore(this.core, fileName, data);
+        const info = checkWithTheCore && this.core ? await checkWithCore(this.core, fileName, data) : null;
         if (ticket !== this.latest) return;
         const model = await loadModel(fileName, data);
         if (ticket !== this.latest) return;
@@ -76,7 +76,7 @@ export class App {
         this.viewer.setModel(model);
         this.onShown(model, fileName);
         this.shown = { file: fileName, ...model.counts };
-        this.status.shown(fileName, model.counts);
+        this.status.shown(fileName, model.counts, repairsOf(info));
       } catch (error) {
         if (ticket !== this.latest) return;
         console.error(`geoshift: could not read ${fileName}`, error);

@@ -90,3 +90,23 @@ export async function checkWithCore(reader: CoreReader, fileName: string, data: 
     }
   }
 }
+
+/**
+ * What building each part as the filters do repairs (welding aside): one line per kind of repair,
+ * the core's summary without its list of indices, prefixed with the part's label where the file has
+ * several parts; and the core's full messages, for the status line's tooltip. docs/denoising.md#bad-input.
+ */
+export function repairsOf(info: ReadInfo | null): { summary: string[]; full: string[] } {
+  const summary: string[] = [];
+  const full: string[] = [];
+  const parts = info?.parts ?? [];
+  for (const part of parts) {
+    const prefix = parts.length > 1 ? `${part.label}: ` : '';
+    for (const message of part.report.messages) {
+      const cut = message.indexOf(': ');
+      summary.push(prefix + (cut >= 0 ? message.slice(0, cut) : message));
+      full.push(prefix + message);
+    }
+  }
+  return { summary, full };
+}

@@ -11,11 +11,11 @@ export class StatusLine {
     this.set('loading', `Loading ${fileName}…`);
   }
 
-  shown(fileName: string, counts: MeshCounts): void {
-    this.set(
-      'ok',
-      `${fileName}: ${counted(counts.vertices, 'vertex', 'vertices')}, ${counted(counts.triangles, 'triangle')}`,
-    );
+  /** `repairs`: what the filters' reading of the file repairs (core-check.ts repairsOf), if anything. */
+  shown(fileName: string, counts: MeshCounts, repairs: { summary: string[]; full: string[] } = { summary: [], full: [] }): void {
+    const text = `${fileName}: ${counted(counts.vertices, 'vertex', 'vertices')}, ${counted(counts.triangles, 'triangle')}`;
+    const repaired = (lines: string[]) => (lines.length ? `; repaired for the filters: ${lines.join('; ')}` : '');
+    this.set('ok', text + repaired(repairs.summary), text + repaired(repairs.full));
   }
 
   /** A filter is running on the model on screen. */
@@ -33,9 +33,9 @@ export class StatusLine {
     this.set('error', message);
   }
 
-  private set(state: 'loading' | 'working' | 'ok' | 'error', text: string): void {
+  private set(state: 'loading' | 'working' | 'ok' | 'error', text: string, title = text): void {
     this.element.dataset.state = state;
     this.element.textContent = text;
-    this.element.title = text;
+    this.element.title = title;
   }
 }
