@@ -252,10 +252,8 @@ std::vector<int> Mesh::orientCoherently(std::vector<std::pair<std::uint64_t, int
     inputFace_[f] = -1 - inputFace_[f];  // inputFlipped(f)
   }
   // Face f's half-edge k joins the corners of its half-edge 2 - k before the flip, reversed.
-  std::vector<char> isFlipped(nf, 0);
-  for (int f : flipped) isFlipped[f] = 1;
   for (auto& [key, h] : edges)
-    if (isFlipped[h / 3]) h = 3 * (h / 3) + 2 - h % 3;
+    if (inputFlipped(h / 3)) h = 3 * (h / 3) + 2 - h % 3;
   std::sort(edges.begin(), edges.end());
   return flipped;
 }
@@ -509,9 +507,10 @@ MeshBuild buildMesh(const TriangleSoup& soup, const MeshBuildOptions& options) {
   for (int f = 0; f < m.faceCount(); ++f) {
     const Face& caller = soup.faces[m.inputFace(f)];
     for (int k = 0; k < 3; ++k) {
-      int& at = first[caller[m.inputCorner(f, k)]];
+      const int c = caller[m.inputCorner(f, k)];
+      int& at = first[c];
       if (at < 0) at = m.face(f)[k];
-      if (at != m.face(f)[k]) severalPieces[caller[m.inputCorner(f, k)]] = 1;
+      if (at != m.face(f)[k]) severalPieces[c] = 1;
     }
   }
   std::vector<std::pair<int, int>> incidences;  // (caller vertex, mesh vertex), for those with several pieces
