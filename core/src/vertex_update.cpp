@@ -97,9 +97,12 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     if (weight) weight[f] = 0.5 * cross.norm();
     plane[f].offset = plane[f].n.dot(p[t[0]] + p[t[1]] + p[t[2]]) * (1.0 / 3);  // no division: it stalled the loop
   };
-  const std::unique_ptr<int[]> badStamp(new int[nf]);  // round in which a face was last queued, to queue it once
+  // Per face, its cross product at the current positions in single precision (the guard reads only
+  // the sign of a dot product with it): the cross product the last check computed at the candidate
+  // positions that became the current ones, kept instead of computed again at every check.
+  const std::unique_ptr<Eigen::Vector3f[]> currentCross(new Eigen::Vector3f[nf]);
   // Per face in one loop: its unit target, the first iteration's plane (later ones are set by the
-  // guard's checks) and its stamp.
+  // guard's checks) and its cross product.
   std::atomic<bool> nonFinite{false}, targetless{false};
   parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
     const Vec3& n = targetNormals[f];
@@ -107,8 +110,9 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     const double len = n.norm();
     if (!(len > 0)) targetless.store(true, std::memory_order_relaxed);
     plane[f].n = len > 0 ? Vec3(n / len) : Vec3::Zero();
-    setPlane(f, mesh.positions(), crossOf(mesh.positions(), mesh.face(f)));
-    badStamp[f] = -1;
+    const Vec3 c = crossOf(mesh.positions(), mesh.face(f));
+    setPlane(f, mesh.positions(), c);
+    currentCross[f] = c.cast<float>();
   });
   if (nonFinite)  // the first such face, whatever the threads
     for (int f = 0; f < nf; ++f)
@@ -146,24 +150,36 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   }
   const int* firstFace = plan ? plan->firstFace.data() : ownFirst.get();
   const int* gatherFace = plan ? plan->gatherFace.data() : ownGather.get();
-  const std::unique_ptr<char[]> bad(new char[nf]);
-  const std::unique_ptr<double[]> scale(new double[nv]);
+  // Per face: bad at the first check of an iteration, then queued in the round under way (so that a
+  // face is queued once a round).
+  // bool, not char: a store of a char may alias anything, and in the check's loop it made every
+  // array's address be read again for each face.
+  const std::unique_ptr<bool[]> bad(new bool[nf]);
+  // Per vertex, how many times its step has been halved in this iteration; kFrozen once it no longer
+  // moves. Its scale 2^-halvings is exact, as a halved double was.
+  constexpr signed char kFrozen = -1;
+  const std::unique_ptr<signed char[]> halvings(new signed char[nv]);
+  auto scaleOf = [&](int v) { return halvings[v] == kFrozen ? 0.0 : std::ldexp(1.0, -halvings[v]); };
   std::vector<char> halvedThisRound(nv);
   std::vector<int> badFaces, touched;
-  int round = 0;
-  // Whether face f passes the guard at the candidate positions, against its normal at the current
-  // ones (compared in single precision: only the sign of a dot product with it is read). The
-  // candidate's plane is set on the way: if the candidate stays, the next iteration starts from it.
-  auto faceOk = [&](int f) {
+  // Whether face f passes the guard at the candidate positions, against its cross product at the
+  // current ones `current` (compared in single precision: only the sign of a dot product with it is
+  // read). The candidate's plane and cross product are kept on the way: if the candidate stays, the
+  // next iteration starts from them. Each face is checked last at its corners' final candidates
+  // (a halved corner's faces are all checked again), so currentCross holds the cross product at the
+  // next iteration's positions, the same bits as computing it there.
+  auto faceOkAgainst = [&](int f, const Eigen::Vector3f& current) {
     const Face& t = mesh.face(f);
     const Vec3 c = crossOf(candidate, t);
-    const Eigen::Vector3f current = crossOf(x, t).cast<float>();
     setPlane(f, candidate, c);
+    currentCross[f] = c.cast<float>();
     const bool keepsInputSide = inputNormal[f].squaredNorm() == 0.0f || c.dot(inputNormal[f].cast<double>()) > 0.0 ||
                                 (options.flipGuard == FlipGuard::InputOrTarget && c.dot(plane[f].n) > 0.0);
     const bool keepsCurrentSide = (current.array() == 0.0f).all() || c.dot(current.cast<double>()) > 0.0;
     return keepsInputSide && keepsCurrentSide;
   };
+  // A face checked again within an iteration: its kept cross product is already the candidate's.
+  auto faceOkAgain = [&](int f) { return faceOkAgainst(f, crossOf(x, mesh.face(f)).cast<float>()); };
 
   for (int it = 0; it < options.iterations; ++it) {
     progress.step(static_cast<double>(it) / options.iterations, "vertex update");
@@ -187,41 +203,46 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
         wsum = end - begin;
       }
       step[v] = wsum > 0 ? Vec3(sum * (1.0 / wsum)) : Vec3::Zero();
-      scale[v] = 1.0;
       candidate[v] = xv + step[v];
     });
+    // Apart from the gather: a store of a char may alias anything, and in the loop it made every
+    // array's address be read again for each vertex.
+    std::memset(halvings.get(), 0, nv);
 
-    parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) { bad[f] = !faceOk(f); });
+    parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
+      const Eigen::Vector3f current = currentCross[f];
+      bad[f] = !faceOkAgainst(f, current);
+    });
     badFaces.clear();
     // Bad faces are few: memchr skips the runs of good ones many bytes at a time.
-    for (const char* at = bad.get(); (at = static_cast<const char*>(std::memchr(at, 1, bad.get() + nf - at))); ++at)
-      badFaces.push_back(static_cast<int>(at - bad.get()));
+    const char* flags = reinterpret_cast<const char*>(bad.get());  // a bool's bytes are 0 or 1
+    for (const char* at = flags; (at = static_cast<const char*>(std::memchr(at, 1, flags + nf - at))); ++at)
+      badFaces.push_back(static_cast<int>(at - flags));
     while (!badFaces.empty()) {
       // Shorten the steps of every vertex of a bad face once per round, then re-check only the
       // faces those vertices touch.
       touched.clear();
       for (int f : badFaces) {
+        bad[f] = false;
         for (int v : mesh.face(f)) {
-          if (halvedThisRound[v] || scale[v] == 0.0) continue;
+          if (halvedThisRound[v] || halvings[v] == kFrozen) continue;
           halvedThisRound[v] = 1;
           touched.push_back(v);
-          if (scale[v] == 1.0) ++result.limitedSteps;
-          scale[v] *= 0.5;
-          if (scale[v] < std::ldexp(1.0, -kMaxHalvings)) {
-            scale[v] = 0.0;
+          if (halvings[v] == 0) ++result.limitedSteps;
+          if (++halvings[v] > kMaxHalvings) {
+            halvings[v] = kFrozen;
             ++result.frozenSteps;
           }
-          candidate[v] = x[v] + scale[v] * step[v];
+          candidate[v] = x[v] + scaleOf(v) * step[v];
         }
       }
       badFaces.clear();
-      ++round;
       for (int v : touched) {
         halvedThisRound[v] = 0;
         mesh.forEachOutgoing(v, [&](int h) {
           const int f = Mesh::faceOf(h);
-          if (badStamp[f] != round && !faceOk(f)) {
-            badStamp[f] = round;
+          if (!bad[f] && !faceOkAgain(f)) {
+            bad[f] = true;
             badFaces.push_back(f);
           }
         });

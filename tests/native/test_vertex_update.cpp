@@ -141,6 +141,39 @@ TEST_CASE("the flip guard holds against adversarial targets", "[vertex_update][f
   CHECK(flippedFaces(m, r.positions) == 0);
 }
 
+TEST_CASE("k iterations are one iteration k times: what an iteration hands the next is not stale", "[vertex_update][flip]") {
+  // An iteration hands the next its faces' planes and cross products, computed at the candidates the
+  // guard accepted; a fresh call computes them from its positions. Random targets make the guard
+  // halve and freeze many steps, so faces are checked again within an iteration.
+  const FlipGuard guard = GENERATE(FlipGuard::Input, FlipGuard::InputOrTarget);
+  const Mesh m = noisy(shapes::icosphere(3), 0.5);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g;
+  std::vector<Vec3> target(m.faceCount());
+  for (Vec3& n : target) n = Vec3(g(rng), g(rng), g(rng));
+  VertexUpdateOptions o;
+  o.iterations = 6;
+  o.flipGuard = guard;
+  o.referenceNormals = referenceNormalsOf(m);
+  const VertexUpdateResult all = updateVertices(m, target, o);
+  INFO("limited " << all.limitedSteps << ", frozen " << all.frozenSteps);
+  REQUIRE(all.limitedSteps > 100);
+  REQUIRE(all.frozenSteps > 0);
+  Mesh stepwise = m;
+  VertexUpdateOptions one = o;
+  one.iterations = 1;
+  int limited = 0, frozen = 0;
+  for (int k = 0; k < o.iterations; ++k) {
+    const VertexUpdateResult r = updateVertices(stepwise, target, one);
+    stepwise.positions() = r.positions;
+    limited += r.limitedSteps;
+    frozen += r.frozenSteps;
+  }
+  CHECK(stepwise.positions() == all.positions);  // to the bit
+  CHECK(limited == all.limitedSteps);
+  CHECK(frozen == all.frozenSteps);
+}
+
 TEST_CASE("fixed boundary keeps the border vertices in place", "[vertex_update][boundary]") {
   const Mesh m = noisy(shapes::grid(12), 0.3);
   VertexUpdateOptions o;
