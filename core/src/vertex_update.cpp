@@ -151,9 +151,8 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
   const int* firstFace = plan ? plan->firstFace.data() : ownFirst.get();
   const int* gatherFace = plan ? plan->gatherFace.data() : ownGather.get();
   // Per face: bad at the first check of an iteration, then queued in the round under way (so that a
-  // face is queued once a round).
-  // bool, not char: a store of a char may alias anything, and in the check's loop it made every
-  // array's address be read again for each face.
+  // face is queued once a round). bool, not char: a store of a char may alias anything, and in the
+  // check's loop it made every array's address be read again for each face.
   const std::unique_ptr<bool[]> bad(new bool[nf]);
   // Per vertex, how many times its step has been halved in this iteration; kFrozen once it no longer
   // moves. Its scale 2^-halvings is exact, as a halved double was.
@@ -178,7 +177,8 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     const bool keepsCurrentSide = (current.array() == 0.0f).all() || c.dot(current.cast<double>()) > 0.0;
     return keepsInputSide && keepsCurrentSide;
   };
-  // A face checked again within an iteration: its kept cross product is already the candidate's.
+  // A face checked again within an iteration: what is kept is already the candidate's cross product,
+  // so the current one is computed from the positions.
   auto faceOkAgain = [&](int f) { return faceOkAgainst(f, crossOf(x, mesh.face(f)).cast<float>()); };
 
   for (int it = 0; it < options.iterations; ++it) {
