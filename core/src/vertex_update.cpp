@@ -210,7 +210,7 @@ VertexUpdateResult updateVertices(const Mesh& mesh, std::vector<Vec3> targetNorm
     std::memset(halvings.get(), 0, nv);
 
     parallelFor(nf, par, quiet, "", 0, 1, [&](int f, int) {
-      const Eigen::Vector3f current = currentCross[f];
+      const Eigen::Vector3f current = currentCross[f];  // a copy: the check overwrites what is kept
       bad[f] = !faceOkAgainst(f, current);
     });
     badFaces.clear();
