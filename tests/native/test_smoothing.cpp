@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
 
 #include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
@@ -176,4 +179,53 @@ TEST_CASE("Taubin gives the same positions on any number of threads", "[taubin][
     INFO("weights " << static_cast<int>(weights) << ", " << threads << " threads");
     CHECK(m.positions() == serial.positions());
   }
+}
+
+TEST_CASE("uniform Taubin is the umbrella operator written out, to the bit", "[taubin][reference]") {
+  // A plain reference of Taubin (1995) with uniform weights: each half-step moves every vertex by
+  // factor × the mean of (x_j − x_v) over its neighbours, taken around it in the mesh's order; a
+  // boundary vertex averages its two neighbours along the boundary. The filter's own loop is
+  // written for speed (docs/denoising.md#speed-and-memory); it must give these very bits.
+  const bool open = GENERATE(false, true);
+  Mesh noisy = open ? build(shapes::grid(40, 0.3, 5)) : build(shapes::icosphere(3));
+  NoiseOptions noise;
+  noise.amount = 0.4;
+  noise.seed = 9;
+  addNoise(noisy, noise);
+  // Boundary edges: those of a single face.
+  std::map<std::pair<int, int>, int> edgeFaces;
+  for (const Face& f : noisy.faces())
+    for (int k = 0; k < 3; ++k) ++edgeFaces[std::minmax(f[k], f[(k + 1) % 3])];
+  std::vector<std::vector<int>> boundaryNeighbors(noisy.vertexCount());
+  for (const auto& [edge, faces] : edgeFaces) {
+    if (faces != 1) continue;
+    boundaryNeighbors[edge.first].push_back(edge.second);
+    boundaryNeighbors[edge.second].push_back(edge.first);
+  }
+  std::vector<Vec3> x = noisy.positions();
+  const int steps = 4;
+  for (int it = 0; it < steps; ++it) {
+    for (double factor : {0.5, -0.53}) {
+      std::vector<Vec3> next(x.size());
+      for (int v = 0; v < noisy.vertexCount(); ++v) {
+        std::vector<int> ring;
+        if (noisy.isBoundaryVertex(v)) {
+          ring = boundaryNeighbors[v];
+          REQUIRE(ring.size() == 2);
+        } else {
+          noisy.forEachOutgoing(v, [&](int h) { ring.push_back(noisy.head(h)); });
+        }
+        Vec3 sum = Vec3::Zero();
+        for (int j : ring) sum += x[j] - x[v];
+        next[v] = x[v] + factor * (sum / static_cast<double>(ring.size()));
+      }
+      x = next;
+    }
+  }
+  Mesh m = noisy;
+  taubinSmooth(m, {steps, 0.5, -0.53, LaplacianWeights::Uniform});
+  REQUIRE(m.positions() != noisy.positions());
+  int differing = 0;
+  for (int v = 0; v < m.vertexCount(); ++v) differing += m.position(v) != x[v];
+  CHECK(differing == 0);
 }
