@@ -1,6 +1,8 @@
 #include "geoshift/mesh.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -361,6 +363,148 @@ void Mesh::buildFans(BuildReport& r) {
     r.messages.push_back("kept " + std::to_string(isolated.size()) +
                          " isolated vertex(es) that no face uses; filters leave them as they are: " +
                          listSome(isolated, [](int v) { return "vertex " + std::to_string(v); }));
+}
+
+namespace {
+
+// Moves block i of `a` (elements [B i, B i + B)) to block to[i] for every i, following the
+// permutation's cycles in place. The entries of `to` are marked as their blocks move (complemented:
+// ~k < 0) and restored at the end; nothing is allocated.
+template <int B, class T>
+void permuteInPlace(T* a, int* to, int n) noexcept {
+  for (int i = 0; i < n; ++i) {
+    if (to[i] < 0) continue;
+    std::array<T, B> carry;  // the block that waits for its place
+    std::copy_n(a + B * i, B, carry.begin());
+    for (int j = i;;) {
+      const int k = to[j];
+      to[j] = ~k;
+      if (k == i) {
+        std::copy_n(carry.begin(), B, a + B * i);
+        break;
+      }
+      std::swap_ranges(carry.begin(), carry.end(), a + B * k);  // block k in place; its old one goes next
+      j = k;
+    }
+  }
+  for (int i = 0; i < n; ++i) to[i] = ~to[i];
+}
+
+bool isPermutation(const std::vector<int>& p, int n) {
+  if (static_cast<int>(p.size()) != n) return false;
+  std::vector<char> seen(n, 0);
+  for (int i : p) {
+    if (i < 0 || i >= n || seen[i]) return false;
+    seen[i] = 1;
+  }
+  return true;
+}
+
+}  // namespace
+
+void Mesh::renumber(Renumbering& r) noexcept {
+  const int nv = vertexCount(), nf = faceCount();
+  int* newVertex = r.newVertex.data();
+  const bool byInput = r.newFace.empty();
+  auto faceTo = [&](int f) { return byInput ? inputFace(f) : r.newFace[f]; };
+  auto newHalfedge = [&](int h) { return h < 0 ? h : 3 * faceTo(h / 3) + h % 3; };
+  // The values first, while every face is still where faceTo reads it.
+  for (Face& t : faces_)
+    for (int& v : t) v = newVertex[v];
+  for (int& h : twin_) h = newHalfedge(h);
+  for (int& h : vertexHalfedge_) h = newHalfedge(h);
+  for (int& v : originalVertex_) v = newVertex[v];
+  permuteInPlace<1>(positions_.data(), newVertex, nv);
+  permuteInPlace<1>(vertexHalfedge_.data(), newVertex, nv);
+  permuteInPlace<1>(originalVertex_.data(), newVertex, nv);
+  if (!byInput) {
+    int* newFace = r.newFace.data();
+    permuteInPlace<1>(faces_.data(), newFace, nf);
+    permuteInPlace<1>(inputFace_.data(), newFace, nf);
+    permuteInPlace<3>(twin_.data(), newFace, nf);  // a face's three half-edges move together
+    return;
+  }
+  // Each face to inputFace(f), which moves with it: every swap puts one face where it belongs, and a
+  // place already taken is never swapped again, so this ends after at most nf swaps whatever the
+  // input faces are.
+  for (int g = 0; g < nf; ++g)
+    for (int d = inputFace(g); d != g && inputFace(d) != d; d = inputFace(g)) {
+      std::swap(faces_[g], faces_[d]);
+      std::swap(inputFace_[g], inputFace_[d]);
+      std::swap_ranges(twin_.begin() + 3 * g, twin_.begin() + 3 * g + 3, twin_.begin() + 3 * d);
+    }
+}
+
+bool isRenumbering(const Mesh& mesh, const Renumbering& r) {
+  return isPermutation(r.newVertex, mesh.vertexCount()) && isPermutation(r.newFace, mesh.faceCount());
+}
+
+void invert(Renumbering& r) noexcept {
+  // Inverse of a permutation in place: along each cycle i → p[i] → ..., p[p[i]] = i; visited
+  // entries are complemented and restored at the end.
+  for (std::vector<int>* p : {&r.newVertex, &r.newFace}) {
+    int* a = p->data();
+    const int n = static_cast<int>(p->size());
+    for (int i = 0; i < n; ++i) {
+      if (a[i] < 0) continue;
+      int from = i, at = a[i];
+      while (at != i) {
+        const int next = a[at];
+        a[at] = ~from;
+        from = at;
+        at = next;
+      }
+      a[i] = ~from;
+    }
+    for (int i = 0; i < n; ++i) a[i] = ~a[i];
+  }
+}
+
+Renumbering spatialOrder(const Mesh& mesh) {
+  const int nv = mesh.vertexCount(), nf = mesh.faceCount();
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Vec3& p : mesh.positions())
+    if (p.allFinite()) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  // 21 bits an axis, interleaved into 63.
+  auto spread = [](std::uint64_t x) {
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffull;
+    x = (x | x << 16) & 0x1f0000ff0000ffull;
+    x = (x | x << 8) & 0x100f00f00f00f00full;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+  };
+  std::vector<std::pair<std::uint64_t, int>> key(nv);
+  for (int v = 0; v < nv; ++v) {
+    const Vec3& p = mesh.position(v);
+    std::uint64_t code = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double extent = hi[a] - lo[a];
+      const double t = p.allFinite() && extent > 0 ? (p[a] - lo[a]) / extent : 0.0;
+      code |= spread(static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0)) << a;
+    }
+    key[v] = {code, v};
+  }
+  std::sort(key.begin(), key.end());
+  Renumbering r;
+  r.newVertex.resize(nv);
+  for (int i = 0; i < nv; ++i) r.newVertex[key[i].second] = i;
+  std::vector<std::pair<std::uint64_t, int>>().swap(key);
+  // Faces by their lowest new corner: a counting sort, stable in index order.
+  std::vector<int> start(nv + 1, 0);
+  auto lowest = [&](int f) {
+    const Face& t = mesh.face(f);
+    return std::min({r.newVertex[t[0]], r.newVertex[t[1]], r.newVertex[t[2]]});
+  };
+  for (int f = 0; f < nf; ++f) ++start[lowest(f) + 1];
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  r.newFace.resize(nf);
+  for (int f = 0; f < nf; ++f) r.newFace[f] = start[lowest(f)]++;
+  return r;
 }
 
 std::vector<int> Mesh::neighbors(int v) const {

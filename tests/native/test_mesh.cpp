@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <random>
 #include <set>
 
 #include "geoshift/error.hpp"
@@ -407,4 +409,157 @@ TEST_CASE("a mesh from given twins equals the constructor's; bad twins are refus
   std::vector<Face> degenerate = ico.faces();
   degenerate[3] = {degenerate[3][0], degenerate[3][0], degenerate[3][1]};
   REQUIRE_THROWS_WITH(attempt(twins, degenerate), Catch::Contains("face 3") && Catch::Contains("degenerate"));
+}
+
+// --- renumbering ------------------------------------------------------------------------------------
+
+namespace {
+
+// A random renumbering of the mesh's vertices and faces.
+Renumbering shuffled(const Mesh& m, unsigned seed) {
+  std::mt19937 rng(seed);
+  Renumbering r;
+  r.newVertex.resize(m.vertexCount());
+  r.newFace.resize(m.faceCount());
+  std::iota(r.newVertex.begin(), r.newVertex.end(), 0);
+  std::iota(r.newFace.begin(), r.newFace.end(), 0);
+  std::shuffle(r.newVertex.begin(), r.newVertex.end(), rng);
+  std::shuffle(r.newFace.begin(), r.newFace.end(), rng);
+  return r;
+}
+
+// Everything a mesh holds, element by element, so that two meshes compare to the bit.
+struct Held {
+  std::vector<Vec3> positions;
+  std::vector<Face> faces;
+  std::vector<int> inputFace, twin, halfedge, original;
+  bool operator==(const Held&) const = default;
+};
+Held held(const Mesh& m) {
+  Held h{m.positions(), m.faces(), {}, {}, {}, {}};
+  for (int f = 0; f < m.faceCount(); ++f) h.inputFace.push_back(m.inputFlipped(f) ? -1 - m.inputFace(f) : m.inputFace(f));
+  for (int e = 0; e < m.halfedgeCount(); ++e) h.twin.push_back(m.twin(e));
+  for (int v = 0; v < m.vertexCount(); ++v) {
+    h.halfedge.push_back(m.halfedge(v));
+    h.original.push_back(m.originalVertex(v));
+  }
+  return h;
+}
+
+// A mesh with every kind of element a build can leave: a boundary, a face turned over, a vertex
+// split at a non-manifold edge (a fin) and an isolated vertex.
+Mesh awkwardMesh() {
+  TriangleSoup s = shapes::grid(6, 0.1, 2);
+  const int n = static_cast<int>(s.positions.size());
+  s.faces[7] = {s.faces[7][0], s.faces[7][2], s.faces[7][1]};  // wound backwards: turned by the build
+  // A third face on the diagonal the first two faces share: a fin.
+  std::vector<int> shared;
+  for (int a : s.faces[0])
+    if (std::ranges::count(s.faces[1], a)) shared.push_back(a);
+  REQUIRE(shared.size() == 2);
+  s.positions.push_back(Vec3(0.3, 0.2, 0.5));
+  s.faces.push_back({shared[0], shared[1], n});
+  s.positions.push_back(Vec3(5, 5, 5));        // isolated
+  MeshBuild b = buildMesh(s);
+  REQUIRE(b.report.reorientedFaces > 0);
+  REQUIRE(b.report.splitVertexCopies > 0);
+  REQUIRE(b.report.isolatedVertices == 1);
+  return std::move(b.mesh);
+}
+
+}  // namespace
+
+TEST_CASE("a renumbered mesh walks the same elements in the same order, and renumbering back restores every bit",
+          "[mesh][renumber]") {
+  for (const Mesh& m : {awkwardMesh(), buildMesh(shapes::torus(24, 12)).mesh}) {
+    Renumbering r = shuffled(m, 5);
+    const Renumbering copy = r;
+    REQUIRE(isRenumbering(m, r));
+    Mesh n = m;
+    n.renumber(r);
+    REQUIRE(r.newVertex == copy.newVertex);  // the scratch marks are undone
+    REQUIRE(r.newFace == copy.newFace);
+    checkConnectivity(n);
+    const std::vector<int>& nv = r.newVertex;
+    auto newHalfedge = [&](int h) { return h < 0 ? h : 3 * r.newFace[h / 3] + h % 3; };
+    for (int v = 0; v < m.vertexCount(); ++v) {
+      CAPTURE(v);
+      REQUIRE(n.position(nv[v]) == m.position(v));
+      REQUIRE(n.halfedge(nv[v]) == newHalfedge(m.halfedge(v)));
+      REQUIRE(n.isBoundaryVertex(nv[v]) == m.isBoundaryVertex(v));
+      REQUIRE(n.originalVertex(nv[v]) == nv[m.originalVertex(v)]);
+      std::vector<int> ring = m.neighbors(v);
+      for (int& u : ring) u = nv[u];
+      REQUIRE(n.neighbors(nv[v]) == ring);  // the same neighbours in the same order
+    }
+    for (int f = 0; f < m.faceCount(); ++f) {
+      CAPTURE(f);
+      const int g = r.newFace[f];
+      REQUIRE(n.face(g) == Face{nv[m.face(f)[0]], nv[m.face(f)[1]], nv[m.face(f)[2]]});
+      REQUIRE(n.inputFace(g) == m.inputFace(f));
+      REQUIRE(n.inputFlipped(g) == m.inputFlipped(f));
+      for (int k = 0; k < 3; ++k) REQUIRE(n.twin(3 * g + k) == newHalfedge(m.twin(3 * f + k)));
+    }
+    invert(r);
+    for (int v = 0; v < m.vertexCount(); ++v) REQUIRE(r.newVertex[copy.newVertex[v]] == v);
+    for (int f = 0; f < m.faceCount(); ++f) REQUIRE(r.newFace[copy.newFace[f]] == f);
+    n.renumber(r);
+    REQUIRE(held(n) == held(m));
+    invert(r);
+    REQUIRE(r.newVertex == copy.newVertex);
+    REQUIRE(r.newFace == copy.newFace);
+
+    // Back by the input faces: every face of these meshes is its own input face.
+    for (int f = 0; f < m.faceCount(); ++f) REQUIRE(m.inputFace(f) == f);
+    n.renumber(r);
+    invert(r);
+    r.newFace.clear();
+    n.renumber(r);
+    REQUIRE(held(n) == held(m));
+  }
+  Renumbering wrong = shuffled(awkwardMesh(), 1);
+  wrong.newVertex[0] = wrong.newVertex[1];
+  REQUIRE_FALSE(isRenumbering(awkwardMesh(), wrong));
+  wrong = shuffled(awkwardMesh(), 1);
+  wrong.newFace.pop_back();
+  REQUIRE_FALSE(isRenumbering(awkwardMesh(), wrong));
+}
+
+TEST_CASE("spatial order puts neighbours near one another in index", "[mesh][renumber]") {
+  // A torus in a random order: its edges join vertices about a third of the mesh apart in index.
+  Mesh m = buildMesh(shapes::torus(96, 48)).mesh;
+  Renumbering scramble = shuffled(m, 9);
+  m.renumber(scramble);
+  auto meanGap = [](const Mesh& mesh) {
+    double sum = 0;
+    for (int h = 0; h < mesh.halfedgeCount(); ++h) sum += std::abs(mesh.tail(h) - mesh.head(h));
+    return sum / mesh.halfedgeCount() / mesh.vertexCount();
+  };
+  auto meanFaceGap = [](const Mesh& mesh) {
+    double sum = 0;
+    for (int h = 0; h < mesh.halfedgeCount(); ++h) sum += std::abs(Mesh::faceOf(h) - Mesh::faceOf(mesh.twin(h)));
+    return sum / mesh.halfedgeCount() / mesh.faceCount();
+  };
+  const double before = meanGap(m), faceBefore = meanFaceGap(m);
+  Renumbering r = spatialOrder(m);
+  REQUIRE(isRenumbering(m, r));
+  m.renumber(r);
+  const double after = meanGap(m), faceAfter = meanFaceGap(m);
+  INFO("vertex gap " << before << " -> " << after << ", face gap " << faceBefore << " -> " << faceAfter);
+  REQUIRE(before > 0.3);
+  REQUIRE(after < 0.03);
+  REQUIRE(faceAfter < 0.03);
+  // Faces come in the order of their lowest corner.
+  for (int f = 1; f < m.faceCount(); ++f) {
+    const Face& a = m.face(f - 1);
+    const Face& b = m.face(f);
+    REQUIRE(std::min({a[0], a[1], a[2]}) <= std::min({b[0], b[1], b[2]}));
+  }
+  // The order depends on the positions alone: the same mesh in another order gets the same one.
+  Mesh again = m;
+  Renumbering other = shuffled(again, 3);
+  again.renumber(other);
+  Renumbering r2 = spatialOrder(again);
+  again.renumber(r2);
+  REQUIRE(again.positions() == m.positions());
 }

@@ -47,6 +47,8 @@ struct BuildReport {
   }
 };
 
+struct Renumbering;
+
 class Mesh {
  public:
   Mesh() = default;
@@ -131,6 +133,16 @@ class Mesh {
   // The vertex a split copy was made from (itself for every other vertex).
   int originalVertex(int v) const { return originalVertex_[v]; }
 
+  // Renumbers the vertices and faces: vertex v becomes r.newVertex[v] and face f becomes
+  // r.newFace[f], its corners, half-edges and twins following, so every walk (a vertex's
+  // outgoing half-edges, its neighbours) visits the same elements in the same order under their
+  // new numbers. In place and without allocating, so it cannot throw: r serves as scratch and is
+  // the same when it returns. r must be a renumbering of this mesh (isRenumbering). With
+  // r.newFace empty, face f becomes inputFace(f) instead, which must then be a permutation of the
+  // faces: it puts back the faces of a mesh built without dropping any (inputFace(f) == f) after
+  // they were renumbered, with no array to keep for them.
+  void renumber(Renumbering& r) noexcept;
+
  private:
   // Vertex half-edges, splitting a vertex whose faces form several fans (one copy per extra fan).
   void buildFans(BuildReport& r);
@@ -143,6 +155,25 @@ class Mesh {
   std::vector<int> vertexHalfedge_;
   std::vector<int> originalVertex_;
 };
+
+// A renumbering of a mesh's vertices and faces: newVertex[v] and newFace[f] the new indices, each
+// a permutation.
+struct Renumbering {
+  std::vector<int> newVertex;
+  std::vector<int> newFace;
+};
+
+// Whether r is a renumbering of the mesh: permutations of its vertex and face counts.
+bool isRenumbering(const Mesh& mesh, const Renumbering& r);
+
+// Turns r into the renumbering that undoes it, in place and without allocating.
+void invert(Renumbering& r) noexcept;
+
+// Vertices in the Morton (Z-curve) order of their positions in the bounding box, ties in index
+// order; faces by their lowest new corner, ties in index order. Elements near one another in
+// space get indices near one another, so that walks over neighbourhoods read nearby memory
+// (docs/denoising.md#speed-and-memory, spatial order).
+Renumbering spatialOrder(const Mesh& mesh);
 
 // The connected pieces of a mesh: vertices joined through faces (after the build's repairs, so a
 // fin cut off a non-manifold edge is a piece of its own).
