@@ -83,6 +83,9 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
            << r.spectrumKurtosis << " of the highest frequencies)";
   }
   line << ", " << r.threads << " threads";
+  // docs/denoising.md#speed-and-memory (spatial order)
+  if (r.spatialOrder)
+    line << ", run in spatial order (" << 100 * r.farAdjacencies << "% of the file's adjacencies lie far apart in it)";
   std::cerr << line.str() << "\n";
 }
 

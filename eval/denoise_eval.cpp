@@ -175,7 +175,8 @@ struct WhatIf {
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes, minPieceVertices;
-  std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate;
+  std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
+      spatialOrder;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
   std::vector<int> presmoothing;
@@ -209,6 +210,7 @@ struct WhatIf {
     if (tieStandardErrors) o.tieStandardErrors = *tieStandardErrors;
     if (tieByNormals) o.tieByNormals = *tieByNormals;
     if (inputCandidate) o.inputCandidate = *inputCandidate;
+    if (spatialOrder) o.spatialOrder = *spatialOrder;
     if (supportSteps) o.supportSmoothing.iterations = *supportSteps;
     if (refineNoise) o.refineNoise = *refineNoise;
     if (halving) o.halvingRace = *halving;
@@ -534,7 +536,7 @@ int usage(const char* error) {
          "  --strength, --detail-bound-ratio, --max-passes, --hr (list), --presmoothing (list), --vertex-iterations,\n"
          "  --radius, --hs, --patience, --fixed-passes, --risk-normal-smoothing, --probe-spacing, --refine-noise on|off,\n"
          "  --halving on|off, --support-steps (supportSmoothing.iterations), --tie-probes, --tie-margin,\n"
-         "  --tie-standard-errors, --tie-normals on|off, --input-candidate on|off,\n"
+         "  --tie-standard-errors, --tie-normals on|off, --input-candidate on|off, --spatial-order on|off,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
          "  --gradient-risk-weight, --impulse-spectrum-kurtosis, --min-piece (minPieceVertices)\n"
@@ -623,6 +625,7 @@ int main(int argc, char** argv) {
       else if (a == "--tie-standard-errors") whatIf.tieStandardErrors = std::stod(value());
       else if (a == "--tie-normals") whatIf.tieByNormals = value() != "off";
       else if (a == "--input-candidate") whatIf.inputCandidate = value() != "off";
+      else if (a == "--spatial-order") whatIf.spatialOrder = value() != "off";
       else if (a == "--support-steps") whatIf.supportSteps = std::stoi(value());
       else if (a == "--trace") whatIf.trace = true;
       else if (a == "--true-noise") whatIf.trueNoise = true;

@@ -98,6 +98,25 @@ double robustSpread(std::vector<double> d) {
   return 1.4826 * d[d.size() / 2];
 }
 
+// The share of the mesh's adjacencies (the two vertices of an edge, the two faces across it) whose
+// indices lie more than kFar apart, under the renumbering r (null: as numbered): those that a walk
+// over neighbourhoods in index order is likely to read from outside the cache
+// (docs/denoising.md#speed-and-memory, spatial order).
+double farAdjacencies(const Mesh& mesh, const Renumbering* r) {
+  constexpr int kFar = 4096;
+  auto vertex = [&](int v) { return r ? r->newVertex[v] : v; };
+  auto face = [&](int f) { return r ? r->newFace[f] : f; };
+  long far = 0, all = 0;
+  for (int h = 0; h < mesh.halfedgeCount(); ++h) {
+    const int t = mesh.twin(h);
+    if (t >= 0 && t < h) continue;  // each edge once
+    ++all;
+    far += std::abs(vertex(mesh.tail(h)) - vertex(mesh.head(h))) > kFar;
+    if (t >= 0) far += std::abs(face(Mesh::faceOf(h)) - face(Mesh::faceOf(t))) > kFar;
+  }
+  return all > 0 ? static_cast<double>(far) / (2 * all) : 0.0;
+}
+
 // One copy of the mesh being denoised: its positions and the face normals its guard refers to.
 struct Track {
   std::vector<Vec3> positions;
@@ -495,6 +514,37 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   };
   if (!(level > 0)) return finish();  // nothing to remove
   const double sigma = level * ael;
+  // The passes run in spatial order (DenoiseOptions::spatialOrder); the caller's order comes back on
+  // the way out, after an exception too (the noise estimates above have read the caller's order).
+  struct Order {
+    Mesh& mesh;
+    // The caller's numbers to the passes' while they run. Without newFace where every face is its
+    // own input face: the faces are put back by it (Mesh::renumber), which saves 8 bytes a vertex at
+    // the peak.
+    Renumbering renumbering;
+    ~Order() {
+      if (renumbering.newVertex.empty()) return;
+      invert(renumbering);
+      mesh.renumber(renumbering);
+    }
+  } order{mesh, {}};
+  if (o.spatialOrder) {
+    // Taken where at least 1% of the adjacencies lie far apart and it halves them: a mesh numbered
+    // along its surface (a grid, the rings of a surface of revolution) keeps its own order, which a
+    // Z-curve does not better, and so does a mesh with too few far adjacencies to be worth results
+    // that differ in their last digits.
+    const double before = farAdjacencies(mesh, nullptr);
+    result.farAdjacencies = before;
+    Renumbering spatial = before >= 0.01 ? spatialOrder(mesh) : Renumbering{};
+    if (before >= 0.01 && farAdjacencies(mesh, &spatial) < 0.5 * before) {
+      bool facesByInput = true;
+      for (int f = 0; f < mesh.faceCount() && facesByInput; ++f) facesByInput = mesh.inputFace(f) == f;
+      order.renumbering = std::move(spatial);
+      mesh.renumber(order.renumbering);
+      result.spatialOrder = true;
+      if (facesByInput) std::vector<int>().swap(order.renumbering.newFace);
+    }
+  }
   const std::vector<Vec3> input = mesh.positions();
   // The passes run on `mesh` itself: on an exception it gets its input back. assign() into a vector
   // of the same size does not allocate, so the restore cannot throw.
@@ -538,6 +588,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   riskOptions.probeSpacing = o.probeSpacing;
   riskOptions.boundedDivergence = o.boundedDivergence;
   riskOptions.gradientWeight = o.gradientRiskWeight;
+  if (result.spatialOrder) riskOptions.visitOrder = &order.renumbering.newVertex;
   RiskEstimate risk(mesh, input, raceSigma, o.strength, riskOptions);
   std::vector<Vec3> probed = risk.probedInput();
   const VertexUpdateOptions probedUpdate = passes.updateFrom(probed);

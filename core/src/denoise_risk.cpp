@@ -16,15 +16,19 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 
+#include "geoshift/error.hpp"
 #include "geoshift/geometry.hpp"
 
 namespace geoshift::denoise_detail {
 
 namespace {
 
-// Greedy choice of vertices at least `spacing` edges apart, in index order.
-std::vector<char> spacedVertices(const Mesh& mesh, const std::vector<Vec3>& normals, int spacing) {
+// Greedy choice of vertices at least `spacing` edges apart, in the order of `order` (the i-th vertex
+// visited is order[i]; null: index order).
+std::vector<char> spacedVertices(const Mesh& mesh, const std::vector<Vec3>& normals, int spacing,
+                                 const std::vector<int>* order) {
   const int n = mesh.vertexCount();
   std::vector<char> chosen(n, 0);
   if (spacing <= 1) {
@@ -32,7 +36,8 @@ std::vector<char> spacedVertices(const Mesh& mesh, const std::vector<Vec3>& norm
     return chosen;
   }
   std::vector<int> blockedBy(n, -1), depth(n, 0), queue;
-  for (int v = 0; v < n; ++v) {
+  for (int i = 0; i < n; ++i) {
+    const int v = order ? (*order)[i] : i;
     if (blockedBy[v] >= 0 || normals[v].squaredNorm() == 0) continue;
     chosen[v] = 1;
     // Block the ball of radius spacing − 1 around v (breadth first over edges).
@@ -62,8 +67,12 @@ std::vector<char> spacedVertices(const Mesh& mesh, const std::vector<Vec3>& norm
 RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double sigma, double strength,
                            const RiskOptions& options)
     : mesh_(work), input_(input), sigma_(sigma), strength_(strength), eps_(0.01 * sigma * strength),
-      boundedDivergence_(options.boundedDivergence), gradientWeight_(options.gradientWeight) {
+      boundedDivergence_(options.boundedDivergence), gradientWeight_(options.gradientWeight),
+      visitOrder_(options.visitOrder) {
   const int n = work.vertexCount();
+  if (visitOrder_ && static_cast<int>(visitOrder_->size()) != n)
+    throw InputError("risk estimate: a visit order of " + std::to_string(visitOrder_->size()) + " vertices for " +
+                     std::to_string(n));
   work.positions() = input;
   if (options.normalSmoothing > 0) {
     TaubinOptions taubin = options.taubin;
@@ -73,10 +82,11 @@ RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double si
   normals_ = vertexNormals(work);
   for (int h = 0; h < work.halfedgeCount(); ++h)
     if (countsEdge(h)) ++edges_;
-  const std::vector<char> chosen = spacedVertices(work, normals_, options.probeSpacing);
+  const std::vector<char> chosen = spacedVertices(work, normals_, options.probeSpacing, visitOrder_);
   probe_.assign(n, 0);
   std::mt19937_64 rng(options.seed);
-  for (int v = 0; v < n; ++v) {
+  for (int i = 0; i < n; ++i) {
+    const int v = visitOrder_ ? (*visitOrder_)[i] : i;
     // One draw per vertex whatever the spacing, so a vertex's sign does not depend on the others.
     const signed char sign = (rng() >> 63) ? 1 : -1;
     if (normals_[v].squaredNorm() > 0) ++measured_;
@@ -90,7 +100,8 @@ RiskEstimate::RiskEstimate(Mesh& work, const std::vector<Vec3>& input, double si
 
 void RiskEstimate::reseed(std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  for (signed char& b : probe_) {
+  for (size_t i = 0; i < probe_.size(); ++i) {
+    signed char& b = probe_[visitOrder_ ? (*visitOrder_)[i] : i];
     const signed char sign = (rng() >> 63) ? 1 : -1;  // one draw per vertex, as in the constructor
     if (b != 0) b = sign;
   }

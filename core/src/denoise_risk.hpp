@@ -20,6 +20,10 @@ struct RiskOptions {
   // (chosen greedily in index order), so that the probe's cross terms, which carry its randomness,
   // mostly vanish; the divergence is scaled up from the probed vertices to all.
   int probeSpacing = 5;
+  // With the mesh renumbered (Mesh::renumber), the caller's vertex v is vertex visitOrder[v]: the
+  // probe's vertices are chosen and its signs drawn in the caller's order, so the probe does not
+  // depend on the renumbering. Null: index order.
+  const std::vector<int>* visitOrder = nullptr;
   // Each probed vertex's divergence term kept within [0, 1]: a discrete decision (such as the
   // vertex update's flip guard) that goes one way for the input and the other for the probed copy makes
   // the difference quotient a jump of ±(step / ε), which would swing the risk by far more than the
@@ -91,6 +95,7 @@ class RiskEstimate {
   double gradientWeight_ = 0;
   double edges_ = 0;         // between measured vertices
   double probedDegree_ = 0;  // Σ over probed vertices of their edges to measured ones
+  const std::vector<int>* visitOrder_ = nullptr;  // RiskOptions::visitOrder
 };
 
 }  // namespace geoshift::denoise_detail

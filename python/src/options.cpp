@@ -223,6 +223,7 @@ void bindOptions(py::module_& m) {
       .def_readwrite("tie_standard_errors", &DenoiseOptions::tieStandardErrors)
       .def_readwrite("tie_by_normals", &DenoiseOptions::tieByNormals)
       .def_readwrite("input_candidate", &DenoiseOptions::inputCandidate)
+      .def_readwrite("spatial_order", &DenoiseOptions::spatialOrder)
       .def_readwrite("refine_noise", &DenoiseOptions::refineNoise)
       .def_readwrite("detail_bound_ratio", &DenoiseOptions::detailBoundRatio)
       .def_readwrite("high_frequency_level", &DenoiseOptions::highFrequencyLevel)

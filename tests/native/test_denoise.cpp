@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
+#include <random>
 #include <utility>
 
 #include "geoshift/denoise.hpp"
@@ -334,6 +336,69 @@ TEST_CASE("default denoising gives the same bits for any thread count", "[denois
   REQUIRE(one.positions() == two.positions());
   REQUIRE(r1.passes == r2.passes);
   REQUIRE(r1.estimatedError == r2.estimatedError);
+}
+
+// docs/denoising.md#speed-and-memory (spatial order). A torus listed in random order: the passes
+// run renumbered, which changes only the order of floating-point sums; the probe is the same, so is
+// every choice, and the caller's numbering comes back, after a cancel too.
+TEST_CASE("spatial order changes only the order of sums, and the caller's order comes back", "[denoise][order]") {
+  TriangleSoup soup = shapes::torus(96, 48);
+  {
+    std::mt19937 rng(7);
+    std::vector<int> to(soup.positions.size());
+    std::iota(to.begin(), to.end(), 0);
+    std::shuffle(to.begin(), to.end(), rng);
+    std::vector<Vec3> p(soup.positions.size());
+    for (size_t v = 0; v < to.size(); ++v) p[to[v]] = soup.positions[v];
+    soup.positions = p;
+    for (Face& f : soup.faces)
+      for (int& v : f) v = to[v];
+    std::shuffle(soup.faces.begin(), soup.faces.end(), rng);
+  }
+  const Mesh noisy = withNoise(build(soup), 0.4, 3);
+  const double ael = averageEdgeLength(noisy);
+  Mesh spatial = noisy, caller = noisy;
+  DenoiseOptions off;
+  off.spatialOrder = false;
+  const DenoiseResult a = denoise(spatial), b = denoise(caller, off);
+  REQUIRE(a.spatialOrder);
+  REQUIRE_FALSE(b.spatialOrder);
+  REQUIRE(a.farAdjacencies > 0.1);
+  REQUIRE(a.presmoothingSteps == b.presmoothingSteps);
+  REQUIRE(a.taubinOnly == b.taubinOnly);
+  REQUIRE(a.passes == b.passes);
+  REQUIRE(a.rangeBandwidth == b.rangeBandwidth);
+  REQUIRE(a.passesRun == b.passesRun);
+  REQUIRE(a.tieProbes == b.tieProbes);
+  REQUIRE(a.noiseLevel == Approx(b.noiseLevel).epsilon(1e-9));
+  REQUIRE(a.passes > 0);
+  double farthest = 0;
+  for (int v = 0; v < noisy.vertexCount(); ++v)
+    farthest = std::max(farthest, (spatial.position(v) - caller.position(v)).norm());
+  INFO("largest difference " << farthest / ael << " AEL");
+  REQUIRE(farthest < 1e-9 * ael);
+  REQUIRE(spatial.faces() == noisy.faces());
+  for (int h = 0; h < noisy.halfedgeCount(); ++h) REQUIRE(spatial.twin(h) == noisy.twin(h));
+  for (int v = 0; v < noisy.vertexCount(); ++v) REQUIRE(spatial.halfedge(v) == noisy.halfedge(v));
+  // The agreement is not that of two runs that moved nothing: the vertices moved by a good part of
+  // the noise.
+  double moved = 0;
+  for (int v = 0; v < noisy.vertexCount(); ++v) moved += (spatial.position(v) - noisy.position(v)).squaredNorm();
+  REQUIRE(std::sqrt(moved / noisy.vertexCount()) > 0.1 * ael);
+
+  // Cancelled half-way, renumbered: the mesh as it was, bit for bit.
+  Mesh cancelled = noisy;
+  std::atomic<bool> cancel{false};
+  Progress progress;
+  progress.cancel = &cancel;
+  progress.report = [&](double f, std::string_view) {
+    if (f > 0.5) cancel = true;
+  };
+  REQUIRE_THROWS_AS(denoise(cancelled, DenoiseOptions{}, progress), Cancelled);
+  REQUIRE(cancelled.positions() == noisy.positions());
+  REQUIRE(cancelled.faces() == noisy.faces());
+  for (int h = 0; h < noisy.halfedgeCount(); ++h) REQUIRE(cancelled.twin(h) == noisy.twin(h));
+  for (int v = 0; v < noisy.vertexCount(); ++v) REQUIRE(cancelled.halfedge(v) == noisy.halfedge(v));
 }
 
 // docs/denoising.md#ties-between-starts. A margin wider than any rank makes every start a

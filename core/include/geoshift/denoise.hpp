@@ -129,6 +129,13 @@ struct DenoiseOptions {
   // is asked for in any case (impulseKurtosis 0) (docs/denoising.md#the-input-as-a-candidate).
   // false: the best of the others, always.
   bool inputCandidate = true;
+  // Where at least 1% of the mesh's adjacencies (the two vertices of an edge, the two faces across
+  // it) lie more than 4096 indices apart and the Morton order of the positions (spatialOrder in
+  // mesh.hpp) halves that share, the passes run with the vertices and faces renumbered in it, so that
+  // neighbourhoods read nearby memory, and the result is put back in the caller's order. The probe is
+  // drawn in the caller's order either way, so the result differs only by the order of
+  // floating-point sums (docs/denoising.md#speed-and-memory). false: the caller's order always.
+  bool spatialOrder = true;
   // With an estimated noise level: the race ranks with the estimate's upper level, then the level is
   // refined from the candidates (the least variance a good one implies) and they are ranked again
   // (docs/denoising.md#the-noise-level).
@@ -208,6 +215,10 @@ struct DenoiseResult {
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
                                 // 0 when below a tenth of the noise level (not resolved)
   size_t neighborhoodBytes = 0;
+  // The passes ran in spatial order (DenoiseOptions::spatialOrder); the share of the mesh's
+  // adjacencies more than 4096 indices apart in the caller's order (0 when not measured).
+  bool spatialOrder = false;
+  double farAdjacencies = 0;
   // Paper preset
   double meanIterations = 0;     // of the mean shift, per vertex per pass
   double convergedFraction = 0;  // of the last pass
