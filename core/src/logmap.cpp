@@ -78,44 +78,11 @@ struct LogMap::Tables {
     }
   }
 
-  // Morton (Z-order) key of each vertex's position quantised to 21 bits an axis over the bounding
-  // box; non-finite coordinates go to cell 0 (any order is correct, only locality is at stake).
+  // The Morton order of the positions (mortonOrder in mesh.hpp).
   void renumber(const Mesh& mesh) {
-    const int nv = mesh.vertexCount();
-    Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
-    for (int v = 0; v < nv; ++v)
-      if (mesh.position(v).allFinite()) {
-        lo = lo.cwiseMin(mesh.position(v));
-        hi = hi.cwiseMax(mesh.position(v));
-      }
-    const auto spread = [](std::uint64_t x) {  // 21 bits to every third of 63
-      x &= 0x1fffff;
-      x = (x | x << 32) & 0x1f00000000ffffULL;
-      x = (x | x << 16) & 0x1f0000ff0000ffULL;
-      x = (x | x << 8) & 0x100f00f00f00f00fULL;
-      x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-      x = (x | x << 2) & 0x1249249249249249ULL;
-      return x;
-    };
-    std::vector<std::pair<std::uint64_t, int>> key(nv);
-    for (int v = 0; v < nv; ++v) {
-      std::uint64_t code = 0;
-      for (int a = 0; a < 3; ++a) {
-        const double ext = hi[a] - lo[a], x = mesh.position(v)[a];
-        double q = ext > 0 ? (x - lo[a]) / ext * 2097151.0 : 0.0;
-        if (!(q >= 0)) q = 0;  // also NaN
-        code |= spread(static_cast<std::uint64_t>(std::min(q, 2097151.0))) << a;
-      }
-      key[v] = {code, v};
-    }
-    std::sort(key.begin(), key.end());
-    inner.resize(nv);
-    for (int c = 0; c < nv; ++c) {
-      ring[c].meshVertex = key[c].second;
-      inner[key[c].second] = c;
-    }
+    inner = mortonOrder(mesh);
+    for (int v = 0; v < mesh.vertexCount(); ++v) ring[inner[v]].meshVertex = v;
   }
-
 };
 
 // One solver's mutable buffers: values by internal vertex, the heap, the output.

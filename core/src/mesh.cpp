@@ -460,40 +460,44 @@ void invert(Renumbering& r) noexcept {
   }
 }
 
-Renumbering spatialOrder(const Mesh& mesh) {
-  const int nv = mesh.vertexCount(), nf = mesh.faceCount();
+std::vector<int> mortonOrder(const Mesh& mesh) {
+  const int nv = mesh.vertexCount();
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const Vec3& p : mesh.positions())
     if (p.allFinite()) {
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-  // 21 bits an axis, interleaved into 63.
-  auto spread = [](std::uint64_t x) {
+  const auto spread = [](std::uint64_t x) {  // 21 bits to every third of 63
     x &= 0x1fffff;
-    x = (x | x << 32) & 0x1f00000000ffffull;
-    x = (x | x << 16) & 0x1f0000ff0000ffull;
-    x = (x | x << 8) & 0x100f00f00f00f00full;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
+    x = (x | x << 32) & 0x1f00000000ffffULL;
+    x = (x | x << 16) & 0x1f0000ff0000ffULL;
+    x = (x | x << 8) & 0x100f00f00f00f00fULL;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+    x = (x | x << 2) & 0x1249249249249249ULL;
     return x;
   };
   std::vector<std::pair<std::uint64_t, int>> key(nv);
   for (int v = 0; v < nv; ++v) {
-    const Vec3& p = mesh.position(v);
     std::uint64_t code = 0;
     for (int a = 0; a < 3; ++a) {
-      const double extent = hi[a] - lo[a];
-      const double t = p.allFinite() && extent > 0 ? (p[a] - lo[a]) / extent : 0.0;
-      code |= spread(static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0)) << a;
+      const double ext = hi[a] - lo[a], x = mesh.position(v)[a];
+      double q = ext > 0 ? (x - lo[a]) / ext * 2097151.0 : 0.0;
+      if (!(q >= 0)) q = 0;  // also NaN
+      code |= spread(static_cast<std::uint64_t>(std::min(q, 2097151.0))) << a;
     }
     key[v] = {code, v};
   }
   std::sort(key.begin(), key.end());
+  std::vector<int> order(nv);
+  for (int i = 0; i < nv; ++i) order[key[i].second] = i;
+  return order;
+}
+
+Renumbering spatialOrder(const Mesh& mesh) {
+  const int nv = mesh.vertexCount(), nf = mesh.faceCount();
   Renumbering r;
-  r.newVertex.resize(nv);
-  for (int i = 0; i < nv; ++i) r.newVertex[key[i].second] = i;
-  std::vector<std::pair<std::uint64_t, int>>().swap(key);
+  r.newVertex = mortonOrder(mesh);
   // Faces by their lowest new corner: a counting sort, stable in index order.
   std::vector<int> start(nv + 1, 0);
   auto lowest = [&](int f) {

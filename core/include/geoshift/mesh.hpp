@@ -169,8 +169,12 @@ bool isRenumbering(const Mesh& mesh, const Renumbering& r);
 // Turns r into the renumbering that undoes it, in place and without allocating.
 void invert(Renumbering& r) noexcept;
 
-// Vertices in the Morton (Z-curve) order of their positions in the bounding box, ties in index
-// order; faces by their lowest new corner, ties in index order. Elements near one another in
+// The new index of each vertex in the Morton (Z-curve) order of the positions, quantised to 21 bits
+// an axis over the bounding box of the finite ones, ties in index order; a coordinate that is not
+// finite goes to the lowest or highest cell (only locality is at stake, any order is correct).
+std::vector<int> mortonOrder(const Mesh& mesh);
+
+// Vertices in Morton order (mortonOrder); faces by their lowest new corner, ties in index order. Elements near one another in
 // space get indices near one another, so that walks over neighbourhoods read nearby memory
 // (docs/denoising.md#speed-and-memory, spatial order).
 Renumbering spatialOrder(const Mesh& mesh);
