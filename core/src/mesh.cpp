@@ -426,9 +426,9 @@ void Mesh::renumber(Renumbering& r) noexcept {
   }
   // Each face to inputFace(f), which moves with it: every swap puts one face where it belongs, and a
   // place already taken is never swapped again, so this ends after at most nf swaps whatever the
-  // input faces are.
+  // input faces are (one past the last face stays where it is).
   for (int g = 0; g < nf; ++g)
-    for (int d = inputFace(g); d != g && inputFace(d) != d; d = inputFace(g)) {
+    for (int d = inputFace(g); d != g && d < nf && inputFace(d) != d; d = inputFace(g)) {
       std::swap(faces_[g], faces_[d]);
       std::swap(inputFace_[g], inputFace_[d]);
       std::swap_ranges(twin_.begin() + 3 * g, twin_.begin() + 3 * g + 3, twin_.begin() + 3 * d);
