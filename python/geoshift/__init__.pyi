@@ -138,6 +138,7 @@ class DenoiseOptions:
     tie_standard_errors: float
     tie_by_normals: bool
     input_candidate: bool
+    spatial_order: bool
     refine_noise: bool
     detail_bound_ratio: float
     high_frequency_level: bool
@@ -163,7 +164,8 @@ class DenoiseOptions:
                  risk_normal_smoothing: int = 20, probe_spacing: int = 5, bounded_divergence: bool = True,
                  gradient_risk_weight: float = 0.0,
                  tie_probes: int = 4, tie_margin: float = 0.01, tie_standard_errors: float = 4.0,
-                 tie_by_normals: bool = True, input_candidate: bool = True, refine_noise: bool = True,
+                 tie_by_normals: bool = True, input_candidate: bool = True, spatial_order: bool = True,
+                 refine_noise: bool = True,
                  detail_bound_ratio: float = 0.9, high_frequency_level: bool = True, level_lean: float = 1.1,
                  halving_race: bool = True,
                  impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
