@@ -533,10 +533,10 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     // along its surface (a grid, the rings of a surface of revolution) keeps its own order, which a
     // Z-curve does not better, and so does a mesh with too few far adjacencies to be worth results
     // that differ in their last digits.
-    const double before = farAdjacencies(mesh, nullptr);
-    result.farAdjacencies = before;
-    Renumbering spatial = before >= 0.01 ? spatialOrder(mesh) : Renumbering{};
-    if (before >= 0.01 && farAdjacencies(mesh, &spatial) < 0.5 * before) {
+    result.farAdjacencies = farAdjacencies(mesh, nullptr);
+    Renumbering spatial;
+    if (result.farAdjacencies >= 0.01) spatial = spatialOrder(mesh);
+    if (!spatial.newVertex.empty() && farAdjacencies(mesh, &spatial) < 0.5 * result.farAdjacencies) {
       bool facesByInput = true;
       for (int f = 0; f < mesh.faceCount() && facesByInput; ++f) facesByInput = mesh.inputFace(f) == f;
       order.renumbering = std::move(spatial);

@@ -174,9 +174,9 @@ void invert(Renumbering& r) noexcept;
 // finite goes to the lowest or highest cell (only locality is at stake, any order is correct).
 std::vector<int> mortonOrder(const Mesh& mesh);
 
-// Vertices in Morton order (mortonOrder); faces by their lowest new corner, ties in index order. Elements near one another in
-// space get indices near one another, so that walks over neighbourhoods read nearby memory
-// (docs/denoising.md#speed-and-memory, spatial order).
+// Vertices in Morton order (mortonOrder); faces by their lowest new corner, ties in index order.
+// Elements near one another in space get indices near one another, so that walks over
+// neighbourhoods read nearby memory (docs/denoising.md#speed-and-memory, spatial order).
 Renumbering spatialOrder(const Mesh& mesh);
 
 // The connected pieces of a mesh: vertices joined through faces (after the build's repairs, so a
