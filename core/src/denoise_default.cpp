@@ -228,8 +228,11 @@ class CandidateRace {
   static constexpr double kTolerance = 0.0015, kRaceMargin = 0.005;
 
  public:
-  CandidateRace(const DenoiseOptions& o, const RiskEstimate& risk, const Ranking& rank, DenoiseResult& result)
-      : o_(o), risk_(risk), rank_(rank), result_(result) {}
+  // newVertex: where the passes run in spatial order, the caller's vertex numbers to theirs (empty
+  // otherwise); onCandidate is handed positions in the caller's order.
+  CandidateRace(const DenoiseOptions& o, const RiskEstimate& risk, const Ranking& rank, DenoiseResult& result,
+                const std::vector<int>& newVertex)
+      : o_(o), risk_(risk), rank_(rank), result_(result), newVertex_(newVertex) {}
 
   struct Run {
     int steps;
@@ -316,7 +319,16 @@ class CandidateRace {
 
   double offer(int steps, double hr, int passes, const std::vector<Vec3>& x, const RiskSums& sums,
                bool taubinOnly = false) {
-    if (o_.onCandidate) o_.onCandidate(steps, passes, x, risk_.at(sums, rank_.sigma).positionUnbiased);
+    if (o_.onCandidate) {
+      const double risk = risk_.at(sums, rank_.sigma).positionUnbiased;
+      if (newVertex_.empty()) {
+        o_.onCandidate(steps, passes, x, risk);
+      } else {
+        std::vector<Vec3> callers(x.size());
+        for (size_t v = 0; v < x.size(); ++v) callers[v] = x[newVertex_[v]];
+        o_.onCandidate(steps, passes, callers, risk);
+      }
+    }
     scored_.push_back({steps, passes, hr, sums, taubinOnly});
     const double value = rank_(sums);
     if (best_.empty() || value < bestValue_) {
@@ -331,6 +343,7 @@ class CandidateRace {
   const RiskEstimate& risk_;
   const Ranking& rank_;
   DenoiseResult& result_;
+  const std::vector<int>& newVertex_;
   std::vector<Run> runs_;
   std::vector<Scored> scored_;
   std::vector<Vec3> best_;
@@ -594,7 +607,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   const VertexUpdateOptions probedUpdate = passes.updateFrom(probed);
 
   Ranking rank{risk, raceSigma};
-  CandidateRace race(o, risk, rank, result);
+  CandidateRace race(o, risk, rank, result, order.renumbering.newVertex);
 
   for (int steps : o.presmoothing) {
     // Smoothed once per step count; the runs of the other bandwidths start from copies.

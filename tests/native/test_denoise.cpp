@@ -358,9 +358,21 @@ TEST_CASE("spatial order changes only the order of sums, and the caller's order 
   const Mesh noisy = withNoise(build(soup), 0.4, 3);
   const double ael = averageEdgeLength(noisy);
   Mesh spatial = noisy, caller = noisy;
-  DenoiseOptions off;
+  // Every candidate handed to onCandidate, in the caller's order either way.
+  struct Candidate {
+    int steps, passes;
+    std::vector<Vec3> x;
+  };
+  std::vector<Candidate> seenOn, seenOff;
+  DenoiseOptions on, off;
+  on.onCandidate = [&](int steps, int passes, const std::vector<Vec3>& x, double) {
+    seenOn.push_back({steps, passes, x});
+  };
+  off.onCandidate = [&](int steps, int passes, const std::vector<Vec3>& x, double) {
+    seenOff.push_back({steps, passes, x});
+  };
   off.spatialOrder = false;
-  const DenoiseResult a = denoise(spatial), b = denoise(caller, off);
+  const DenoiseResult a = denoise(spatial, on), b = denoise(caller, off);
   REQUIRE(a.spatialOrder);
   REQUIRE_FALSE(b.spatialOrder);
   REQUIRE(a.farAdjacencies > 0.1);
@@ -377,6 +389,17 @@ TEST_CASE("spatial order changes only the order of sums, and the caller's order 
     farthest = std::max(farthest, (spatial.position(v) - caller.position(v)).norm());
   INFO("largest difference " << farthest / ael << " AEL");
   REQUIRE(farthest < 1e-9 * ael);
+  REQUIRE(seenOn.size() == seenOff.size());
+  REQUIRE(seenOn.size() > 10);
+  double candidateFarthest = 0;
+  for (size_t i = 0; i < seenOn.size(); ++i) {
+    REQUIRE(seenOn[i].steps == seenOff[i].steps);
+    REQUIRE(seenOn[i].passes == seenOff[i].passes);
+    for (int v = 0; v < noisy.vertexCount(); ++v)
+      candidateFarthest = std::max(candidateFarthest, (seenOn[i].x[v] - seenOff[i].x[v]).norm());
+  }
+  INFO("largest difference between the candidates handed out " << candidateFarthest / ael << " AEL");
+  REQUIRE(candidateFarthest < 1e-9 * ael);
   REQUIRE(spatial.faces() == noisy.faces());
   for (int h = 0; h < noisy.halfedgeCount(); ++h) REQUIRE(spatial.twin(h) == noisy.twin(h));
   for (int v = 0; v < noisy.vertexCount(); ++v) REQUIRE(spatial.halfedge(v) == noisy.halfedge(v));
