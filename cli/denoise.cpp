@@ -76,6 +76,15 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
       line << ", a tie between starts settled by " << r.tieProbes << " more probe" << (r.tieProbes > 1 ? "s" : "")
            << (r.tieByNormals ? " and the normals' turn" : "");
     line << ")";
+    // docs/denoising.md#the-two-families-blended
+    if (r.blend.weight > 0) {
+      line << ", blended with ";
+      if (r.blend.taubinOnly)
+        line << "Taubin " << r.blend.presmoothingSteps << " steps alone";
+      else
+        line << "Taubin " << r.blend.presmoothingSteps << " steps + " << r.blend.passes << " passes at h_r " << r.blend.rangeBandwidth;
+      line << " (its weight " << r.blend.weight << ")";
+    }
     // docs/denoising.md#impulsive-noise
     if (r.impulseGarrote)
       line << (o.impulseKurtosis > 0 ? "; the noise looks impulsive: outliers" : "; outliers (--impulse on)")

@@ -36,6 +36,11 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("estimatedError", r.estimatedError);
       out.stats.set("impulseGarrote", r.impulseGarrote ? "yes" : "no");
       out.stats.set("keptInput", r.keptInput ? "yes" : "no");
+      out.stats.set("blendWeight", r.blend.weight);
+      out.stats.set("blendSteps", r.blend.presmoothingSteps);
+      out.stats.set("blendPasses", r.blend.passes);
+      out.stats.set("blendTaubinOnly", r.blend.taubinOnly ? "yes" : "no");
+      out.stats.set("blendRangeBandwidth", r.blend.rangeBandwidth);
       out.stats.set("displacementKurtosis", r.displacementKurtosis);
       out.stats.set("spectrumKurtosis", r.spectrumKurtosis);
     }

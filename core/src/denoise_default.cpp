@@ -32,6 +32,7 @@ void validate(const DenoiseOptions& o) {
     bad("gradient risk weight must be within [0, 10] (got " + std::to_string(o.gradientRiskWeight) + ")");
   if (!(o.impulseSpectrumKurtosis >= 0) || !std::isfinite(o.impulseSpectrumKurtosis))
     bad("impulse spectrum kurtosis must be >= 0 (0: not used; got " + std::to_string(o.impulseSpectrumKurtosis) + ")");
+  if (!(o.blendMargin >= 0 && o.blendMargin <= 1)) bad("blend margin must be within [0, 1] (got " + std::to_string(o.blendMargin) + ")");
   if (!(o.levelLean > 0 && o.levelLean <= 10)) bad("level lean must be within (0, 10] (got " + std::to_string(o.levelLean) + ")");
   if (o.rangeBandwidths.empty()) bad("range bandwidths need at least one candidate h_r");
   for (double hr : o.rangeBandwidths)
@@ -706,6 +707,22 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     Track track{input, &inputUpdate};
     passes.candidate(track, winner.steps, winner.taubinOnly, winner.passes, winner.rangeBandwidth, result);
     x = std::move(track.positions);
+  }
+  if (o.blendMargin > 0) {
+    // The best of the other family, blended in by how close it ranks (DenoiseOptions::blendMargin).
+    size_t other = scored.size();
+    for (size_t i = 0; i < scored.size(); ++i)
+      if (scored[i].taubinOnly != winner.taubinOnly && (other == scored.size() || rank(scored[i].sums) < rank(scored[other].sums)))
+        other = i;
+    const double gap = other < scored.size() ? rank(scored[other].sums) - rank(winnerSums) : o.blendMargin;
+    if (gap < o.blendMargin) {
+      const CandidateRace::Scored& c = scored[other];
+      const double w = std::min(1.0, 0.5 * (1 - gap / o.blendMargin));
+      Track track{input, &inputUpdate};
+      passes.candidate(track, c.steps, c.taubinOnly, c.passes, c.rangeBandwidth, result);
+      for (size_t v = 0; v < x.size(); ++v) x[v] = (1 - w) * x[v] + w * track.positions[v];
+      result.blend = {w, c.steps, c.taubinOnly, c.taubinOnly ? 0.0 : c.rangeBandwidth, c.passes};
+    }
   }
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());
   result.displacementKurtosis = kurtosis(displacements);

@@ -78,6 +78,11 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["estimated_error"] = r.estimatedError;
     out["impulse_garrote"] = r.impulseGarrote;
     out["kept_input"] = r.keptInput;
+    out["blend_weight"] = r.blend.weight;
+    out["blend_steps"] = r.blend.presmoothingSteps;
+    out["blend_passes"] = r.blend.passes;
+    out["blend_taubin_only"] = r.blend.taubinOnly;
+    out["blend_range_bandwidth"] = r.blend.rangeBandwidth;
     out["displacement_kurtosis"] = r.displacementKurtosis;
     out["spectrum_kurtosis"] = r.spectrumKurtosis;
     out["mean_iterations"] = r.meanIterations;

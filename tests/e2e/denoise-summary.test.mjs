@@ -31,6 +31,18 @@ test('a Taubin-only result has no passes and no range bandwidth', async () => {
     '27 Taubin steps alone (no pass)');
 });
 
+test('the candidate of the other family blended in is named with its share of the weight', async () => {
+  assert.equal(await chosen({ ...PASSES, blendWeight: 0.314, blendSteps: 12, blendPasses: 0, blendTaubinOnly: 'yes' }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35, blended with 12 Taubin steps alone (31% of the weight)');
+  assert.equal(await chosen({ ...PASSES, presmoothingSteps: 40, passes: 0, taubinOnly: 'yes', rangeBandwidth: 0,
+    blendWeight: 0.25, blendSteps: 15, blendPasses: 1, blendTaubinOnly: 'no', tieProbes: 1 }),
+    '40 Taubin steps alone (no pass), blended with 15 Taubin steps + 1 pass (25% of the weight);' +
+    ' a close call between two starts, settled by 1 more probe');
+  // No weight, no blend named.
+  assert.equal(await chosen({ ...PASSES, blendWeight: 0, blendSteps: 0, blendPasses: 0, blendTaubinOnly: 'no' }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35');
+});
+
 test('a tie says how many more probes settled it, and when the normals did', async () => {
   assert.equal(await chosen({ ...PASSES, tieProbes: 1 }),
     '15 Taubin steps + 2 passes at Keep edges 0.35; a close call between two starts, settled by 1 more probe');

@@ -471,6 +471,65 @@ TEST_CASE("a tie between starts is settled by more probes, and the result is the
   REQUIRE(none.positions() == off.positions());
 }
 
+// docs/denoising.md#the-two-families-blended. The result is the winner and the best candidate of the
+// other family, each computed again alone, mixed with the weight reported; without the margin, the
+// winner alone.
+TEST_CASE("the best candidates of the two families are blended by how close they rank", "[denoise][blend]") {
+  const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
+  // The candidate (Taubin steps, passes, Taubin alone or not, h_r) computed alone.
+  auto alone = [&](int steps, int passes, bool taubinOnly, double hr, double noiseLevel) {
+    Mesh m = noisy;
+    if (passes > 0) {
+      DenoiseOptions fixed;
+      fixed.noiseLevel = noiseLevel;
+      fixed.presmoothing = {steps};
+      fixed.rangeBandwidths = {hr};
+      fixed.fixedPasses = passes;
+      denoise(m, fixed);
+    } else {
+      TaubinOptions t = taubinOnly ? DenoiseOptions{}.candidateTaubin : DenoiseOptions{}.supportSmoothing;
+      t.iterations = steps;
+      taubinSmooth(m, t);
+    }
+    return m.positions();
+  };
+  // The widest margin the options allow: the other family's best is always blended in.
+  DenoiseOptions wide;
+  wide.blendMargin = 1;
+  Mesh m = noisy;
+  const DenoiseResult r = denoise(m, wide);
+  INFO("winner: Taubin " << r.presmoothingSteps << (r.taubinOnly ? " alone" : " + " + std::to_string(r.passes) + " passes")
+                         << "; blended " << r.blend.weight << " with Taubin " << r.blend.presmoothingSteps
+                         << (r.blend.taubinOnly ? " alone" : " + " + std::to_string(r.blend.passes) + " passes"));
+  REQUIRE_FALSE(r.impulseGarrote);
+  REQUIRE_FALSE(r.keptInput);
+  REQUIRE(r.blend.weight > 0);
+  REQUIRE(r.blend.weight < 1);
+  REQUIRE(r.blend.taubinOnly != r.taubinOnly);
+  const std::vector<Vec3> winner = alone(r.presmoothingSteps, r.passes, r.taubinOnly, r.rangeBandwidth, r.noiseLevel);
+  const std::vector<Vec3> other =
+      alone(r.blend.presmoothingSteps, r.blend.passes, r.blend.taubinOnly, r.blend.rangeBandwidth, r.noiseLevel);
+  REQUIRE(winner != other);
+  for (int v = 0; v < noisy.vertexCount(); ++v) {
+    const Vec3 expected = (1 - r.blend.weight) * winner[v] + r.blend.weight * other[v];
+    REQUIRE(m.position(v) == expected);
+  }
+
+  // Threads change nothing in the blend either.
+  Mesh one = noisy;
+  wide.threads = 1;
+  REQUIRE(denoise(one, wide).blend.weight == r.blend.weight);
+  REQUIRE(one.positions() == m.positions());
+
+  // No margin: the winner alone, and nothing reported.
+  DenoiseOptions off;
+  off.blendMargin = 0;
+  Mesh plain = noisy;
+  const DenoiseResult r0 = denoise(plain, off);
+  REQUIRE(r0.blend.weight == 0);
+  REQUIRE(plain.positions() == alone(r0.presmoothingSteps, r0.passes, r0.taubinOnly, r0.rangeBandwidth, r0.noiseLevel));
+}
+
 // A tie the probes leave unsettled goes to the contender whose normals turn least (tieByNormals):
 // the contenders the leader by mean rank does not lead by tieStandardErrors include the leader
 // itself, so the result turns no more than the leader's. Held unsettled here by a lead no probe can
@@ -723,6 +782,8 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.detailBoundRatio = 1.5; }, "detail bound ratio above 1");
   refuses([](DenoiseOptions& o) { o.detailBoundRatio = std::nan(""); }, "NaN detail bound ratio");
   refuses([](DenoiseOptions& o) { o.levelLean = 0; }, "level lean 0");
+  refuses([](DenoiseOptions& o) { o.blendMargin = -0.01; }, "negative blend margin");
+  refuses([](DenoiseOptions& o) { o.blendMargin = std::nan(""); }, "NaN blend margin");
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = -0.1; }, "negative gradient risk weight");
   refuses([](DenoiseOptions& o) { o.impulseSpectrumKurtosis = -1; }, "negative impulse spectrum kurtosis");
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = std::nan(""); }, "NaN gradient risk weight");

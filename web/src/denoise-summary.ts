@@ -8,7 +8,7 @@ export type DenoiseStats = Readonly<Record<string, number | string | undefined>>
 
 /**
  * "15 Taubin steps + 2 passes at Keep edges 0.35", "27 Taubin steps alone (no pass)" or that the mesh
- * was left as it was, with what decided a close call between the starts, whether only outliers were
+ * was left as it was, with the candidate of the other family blended in, what decided a close call between the starts, whether only outliers were
  * moved and how many pieces too small to denoise were left as they were; null for stats
  * that are not the default denoiser's (another filter, the paper preset).
  */
@@ -25,6 +25,15 @@ export function chosenSummary(stats: DenoiseStats): string | null {
       : `${counted(steps, 'Taubin step')} + ${counted(passes, 'pass', 'passes')}`;
   if (stats.taubinOnly !== 'yes' && typeof stats.rangeBandwidth === 'number' && stats.rangeBandwidth > 0)
     text += ` at Keep edges ${stats.rangeBandwidth}`;
+  // docs/denoising.md#the-two-families-blended: the other family's best, mixed in by how close it ranked.
+  const weight = stats.blendWeight;
+  if (typeof weight === 'number' && weight > 0 && typeof stats.blendSteps === 'number') {
+    const other =
+      stats.blendTaubinOnly === 'yes'
+        ? `${counted(stats.blendSteps, 'Taubin step')} alone`
+        : `${counted(stats.blendSteps, 'Taubin step')} + ${counted(Number(stats.blendPasses), 'pass', 'passes')}`;
+    text += `, blended with ${other} (${Math.round(weight * 100)}% of the weight)`;
+  }
   // docs/denoising.md#ties-between-starts: more probes, and where they leave it open, the normals.
   const probes = stats.tieProbes;
   if (typeof probes === 'number' && probes > 0)

@@ -83,6 +83,14 @@ struct DenoiseOptions {
     return t;
   }();
   double taubinOnlyMargin = 0.005;
+  // The two families hedged: where the best candidate of the other family (Taubin alone against a
+  // start with passes) ranks within blendMargin (in units of σ²) of the winner, the result is their
+  // blend, the other taking 0.5 × (1 − gap / blendMargin) of the weight (more than half where it ranks
+  // below the winner, a Taubin-only candidate short of taubinOnlyMargin). Within such gaps the
+  // risk's own bias on a mesh decides which is better, one way on one mesh and the other way on the
+  // next; the blend is nearer the truth than the worse of the two by more than it is farther than
+  // the better (docs/denoising.md#the-two-families-blended). 0: never.
+  double blendMargin = 0.02;
   int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk
   int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
@@ -212,6 +220,15 @@ struct DenoiseResult {
   double spectrumKurtosis = 0;      // of the input's highest frequencies (impulseSpectrumKurtosis); 0: not read
   bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)
   bool keptInput = false;       // no candidate ranked below the input: returned as it was (inputCandidate)
+  // The candidate of the other family blended in (blendMargin), and its weight (0: none; then the
+  // other fields are 0). The fields above describe the winner.
+  struct Blend {
+    double weight = 0;
+    int presmoothingSteps = 0;
+    bool taubinOnly = false;
+    double rangeBandwidth = 0;
+    int passes = 0;
+  } blend;
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
                                 // 0 when below a tenth of the noise level (not resolved)
   size_t neighborhoodBytes = 0;
