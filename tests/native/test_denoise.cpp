@@ -543,6 +543,7 @@ TEST_CASE("a tie left unsettled by the probes goes to the normals that turn leas
     o.tieMargin = 1e9;
     o.tieProbes = 2;
     o.tieStandardErrors = 1e9;
+    o.blendMargin = 0;  // the contender's own normals: without the other family blended in
     Mesh with = noisy, without = noisy;
     const DenoiseResult r = denoise(with, o);
     o.tieByNormals = false;
