@@ -41,6 +41,25 @@ Mesh withNormalNoise(const Mesh& clean, double amount, std::uint64_t seed) {
   return m;
 }
 
+// One candidate of the default denoiser computed by itself: Taubin steps and passes at h_r, or
+// Taubin alone (candidateTaubin), as the result reports them; to compare a result with it.
+std::vector<Vec3> candidateAlone(const Mesh& noisy, int steps, int passes, bool taubinOnly, double hr, double noiseLevel) {
+  Mesh m = noisy;
+  if (passes > 0) {
+    DenoiseOptions fixed;
+    fixed.noiseLevel = noiseLevel;
+    fixed.presmoothing = {steps};
+    fixed.rangeBandwidths = {hr};
+    fixed.fixedPasses = passes;
+    denoise(m, fixed);
+  } else {
+    TaubinOptions t = taubinOnly ? DenoiseOptions{}.candidateTaubin : DenoiseOptions{}.supportSmoothing;
+    t.iterations = steps;
+    taubinSmooth(m, t);
+  }
+  return m.positions();
+}
+
 }  // namespace
 
 TEST_CASE("the noise estimate recovers a known noise level and sees none on clean meshes", "[denoise][noise]") {
@@ -439,20 +458,7 @@ TEST_CASE("a tie between starts is settled by more probes, and the result is the
   REQUIRE(r.tieProbes >= 1);
   REQUIRE(r.tieProbes <= o.tieProbes);
 
-  Mesh alone = noisy;
-  if (r.passes > 0) {
-    DenoiseOptions fixed;
-    fixed.noiseLevel = r.noiseLevel;
-    fixed.presmoothing = {r.presmoothingSteps};
-    fixed.rangeBandwidths = {r.rangeBandwidth};
-    fixed.fixedPasses = r.passes;
-    denoise(alone, fixed);
-  } else {
-    TaubinOptions t = r.taubinOnly ? o.candidateTaubin : o.supportSmoothing;
-    t.iterations = r.presmoothingSteps;
-    taubinSmooth(alone, t);
-  }
-  REQUIRE(m.positions() == alone.positions());
+  REQUIRE(m.positions() == candidateAlone(noisy, r.presmoothingSteps, r.passes, r.taubinOnly, r.rangeBandwidth, r.noiseLevel));
 
   // Threads change nothing in the settling either.
   Mesh one = noisy;
@@ -476,23 +482,6 @@ TEST_CASE("a tie between starts is settled by more probes, and the result is the
 // winner alone.
 TEST_CASE("the best candidates of the two families are blended by how close they rank", "[denoise][blend]") {
   const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
-  // The candidate (Taubin steps, passes, Taubin alone or not, h_r) computed alone.
-  auto alone = [&](int steps, int passes, bool taubinOnly, double hr, double noiseLevel) {
-    Mesh m = noisy;
-    if (passes > 0) {
-      DenoiseOptions fixed;
-      fixed.noiseLevel = noiseLevel;
-      fixed.presmoothing = {steps};
-      fixed.rangeBandwidths = {hr};
-      fixed.fixedPasses = passes;
-      denoise(m, fixed);
-    } else {
-      TaubinOptions t = taubinOnly ? DenoiseOptions{}.candidateTaubin : DenoiseOptions{}.supportSmoothing;
-      t.iterations = steps;
-      taubinSmooth(m, t);
-    }
-    return m.positions();
-  };
   // The widest margin the options allow: the other family's best is always blended in.
   DenoiseOptions wide;
   wide.blendMargin = 1;
@@ -506,9 +495,9 @@ TEST_CASE("the best candidates of the two families are blended by how close they
   REQUIRE(r.blend.weight > 0);
   REQUIRE(r.blend.weight < 1);
   REQUIRE(r.blend.taubinOnly != r.taubinOnly);
-  const std::vector<Vec3> winner = alone(r.presmoothingSteps, r.passes, r.taubinOnly, r.rangeBandwidth, r.noiseLevel);
+  const std::vector<Vec3> winner = candidateAlone(noisy, r.presmoothingSteps, r.passes, r.taubinOnly, r.rangeBandwidth, r.noiseLevel);
   const std::vector<Vec3> other =
-      alone(r.blend.presmoothingSteps, r.blend.passes, r.blend.taubinOnly, r.blend.rangeBandwidth, r.noiseLevel);
+      candidateAlone(noisy, r.blend.presmoothingSteps, r.blend.passes, r.blend.taubinOnly, r.blend.rangeBandwidth, r.noiseLevel);
   REQUIRE(winner != other);
   for (int v = 0; v < noisy.vertexCount(); ++v) {
     const Vec3 expected = (1 - r.blend.weight) * winner[v] + r.blend.weight * other[v];
@@ -527,7 +516,7 @@ TEST_CASE("the best candidates of the two families are blended by how close they
   Mesh plain = noisy;
   const DenoiseResult r0 = denoise(plain, off);
   REQUIRE(r0.blend.weight == 0);
-  REQUIRE(plain.positions() == alone(r0.presmoothingSteps, r0.passes, r0.taubinOnly, r0.rangeBandwidth, r0.noiseLevel));
+  REQUIRE(plain.positions() == candidateAlone(noisy, r0.presmoothingSteps, r0.passes, r0.taubinOnly, r0.rangeBandwidth, r0.noiseLevel));
 }
 
 // A tie the probes leave unsettled goes to the contender whose normals turn least (tieByNormals):

@@ -19,19 +19,13 @@ export function chosenSummary(stats: DenoiseStats): string | null {
   // docs/denoising.md#the-input-as-a-candidate
   if (stats.keptInput === 'yes')
     return withKeptPieces('left as it was: no smoothing is estimated to bring it closer to the noise-free surface', stats);
-  let text =
-    stats.taubinOnly === 'yes'
-      ? `${counted(steps, 'Taubin step')} alone (no pass)`
-      : `${counted(steps, 'Taubin step')} + ${counted(passes, 'pass', 'passes')}`;
+  let text = stats.taubinOnly === 'yes' ? `${recipe(steps, passes, true)} (no pass)` : recipe(steps, passes, false);
   if (stats.taubinOnly !== 'yes' && typeof stats.rangeBandwidth === 'number' && stats.rangeBandwidth > 0)
     text += ` at Keep edges ${stats.rangeBandwidth}`;
   // docs/denoising.md#the-two-families-blended: the other family's best, mixed in by how close it ranked.
   const weight = stats.blendWeight;
   if (typeof weight === 'number' && weight > 0 && typeof stats.blendSteps === 'number') {
-    const other =
-      stats.blendTaubinOnly === 'yes'
-        ? `${counted(stats.blendSteps, 'Taubin step')} alone`
-        : `${counted(stats.blendSteps, 'Taubin step')} + ${counted(Number(stats.blendPasses), 'pass', 'passes')}`;
+    const other = recipe(stats.blendSteps, Number(stats.blendPasses), stats.blendTaubinOnly === 'yes');
     text += `, blended with ${other} (${Math.round(weight * 100)}% of the weight)`;
   }
   // docs/denoising.md#ties-between-starts: more probes, and where they leave it open, the normals.
@@ -42,6 +36,13 @@ export function chosenSummary(stats: DenoiseStats): string | null {
       (stats.tieByNormals === 'yes' ? ' and then by the smoother normals' : '');
   if (stats.impulseGarrote === 'yes') text += '; impulsive noise: only the outliers moved';
   return withKeptPieces(text, stats);
+}
+
+/** "27 Taubin steps alone" or "15 Taubin steps + 2 passes": one candidate. */
+function recipe(steps: number, passes: number, taubinOnly: boolean): string {
+  return taubinOnly
+    ? `${counted(steps, 'Taubin step')} alone`
+    : `${counted(steps, 'Taubin step')} + ${counted(passes, 'pass', 'passes')}`;
 }
 
 function withKeptPieces(text: string, stats: DenoiseStats): string {
