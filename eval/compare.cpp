@@ -1,6 +1,7 @@
 #include "compare.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <istream>
@@ -54,6 +55,22 @@ Verdict verdictOf(const CaseFigures& c) {
   v.angleRatio = angle / std::max(bestAngle, 1e-12);
   v.ratio = std::max(v.rmsRatio, v.angleRatio);
   return v;
+}
+
+namespace {
+constexpr const char* kNoiseSeed = " (noise seed ";
+}
+
+std::string withNoiseSeed(const std::string& label, std::uint64_t noiseSeed) {
+  return noiseSeed == 1 ? label : label + kNoiseSeed + std::to_string(noiseSeed) + ")";
+}
+
+std::uint64_t noiseSeedOf(const std::string& label) {
+  const size_t at = label.rfind(kNoiseSeed);
+  if (at == std::string::npos || label.back() != ')') return 1;
+  const std::string digits = label.substr(at + std::string(kNoiseSeed).size(), label.size() - 1 - at - std::string(kNoiseSeed).size());
+  if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) return 1;
+  return std::stoull(digits);
 }
 
 void writeResults(std::ostream& out, const std::vector<CaseFigures>& cases) {
@@ -324,6 +341,19 @@ std::string compareResults(const std::vector<CaseFigures>& before, const std::ve
       }
       s << "| won at probe seed " << seed << " | " << wa << " | " << wb << " |\n";
     }
+    // Several realizations of the noise: the first probe seed's count at each (the pairs, which keep
+    // their own noise, count at noise seed 1).
+    std::map<std::uint64_t, std::array<int, 3>> byNoise;  // won before, won after, cases
+    for (const Key& k : common) {
+      std::array<int, 3>& n = byNoise[noiseSeedOf(k.second)];
+      n[0] += won(*ca.at(k).at(*shared.begin()));
+      n[1] += won(*cb.at(k).at(*shared.begin()));
+      ++n[2];
+    }
+    if (byNoise.size() > 1)
+      for (const auto& [noise, n] : byNoise)
+        s << "| won at noise seed " << noise << " (of " << n[2] << ", probe seed " << *shared.begin() << ") | " << n[0]
+          << " | " << n[1] << " |\n";
     Means ma, mb;
     std::vector<std::string> lost, gained;
     std::vector<double> dRms, dAngle;

@@ -32,6 +32,13 @@ Verdict verdictOf(const CaseFigures& c);
 inline bool won(const CaseFigures& c) { return verdictOf(c).win; }
 inline double ratio(const CaseFigures& c) { return verdictOf(c).ratio; }
 
+// The noise label of a case at another realization of the synthetic noises (denoise_eval
+// --noise-seed): "<label> (noise seed N)", so that cases of several realizations stay apart in one
+// run and in --compare; the scoreboard's realization, 1, keeps its label, so that its results compare
+// with those of runs before the suffix. noiseSeedOf reads it back (1 without the suffix).
+std::string withNoiseSeed(const std::string& label, std::uint64_t noiseSeed);
+std::uint64_t noiseSeedOf(const std::string& label);
+
 // Tab-separated, one case and seed a line, after a header; numbers with 17 significant digits.
 void writeResults(std::ostream& out, const std::vector<CaseFigures>& cases);
 // Reads what writeResults wrote; `name` (the file's) goes into the InputError a bad line raises,
@@ -67,7 +74,8 @@ ShareInterval groupBootstrapShare(const std::vector<std::string>& groups, const 
                                   int resamples = 10000, std::uint64_t seed = 1);
 
 // The comparison of `after` against `before`, per set, over the (set, mesh, noise) cases both hold,
-// as Markdown: cases won at each seed the two share, the cases whose verdict changed at the first,
+// as Markdown: cases won at each seed the two share (and, where the cases hold more than one noise
+// realization, at each noise seed), the cases whose verdict changed at the first,
 // the geometric mean ratios, and for RMS and normal error the cases that moved each way with the
 // signed-rank test of log(after / before), each case's change averaged over the shared seeds; then
 // the same test over each mesh's mean change (groupMeans).

@@ -383,7 +383,7 @@ std::string lower(std::string s) {
   return s;
 }
 
-std::vector<std::uint64_t> parseSeeds(const std::string& text) {
+std::vector<std::uint64_t> parseSeeds(const std::string& text, const std::string& option) {
   std::vector<std::uint64_t> out;
   std::stringstream list(text);
   for (std::string item; std::getline(list, item, ',');) {
@@ -392,11 +392,11 @@ std::vector<std::uint64_t> parseSeeds(const std::string& text) {
       out.push_back(std::stoull(item));
     } else {
       const std::uint64_t a = std::stoull(item.substr(0, dash)), b = std::stoull(item.substr(dash + 1));
-      if (b < a || b - a > 1000) throw InputError("--seeds: bad range " + item);
+      if (b < a || b - a > 1000) throw InputError(option + ": bad range " + item);
       for (std::uint64_t s = a; s <= b; ++s) out.push_back(s);
     }
   }
-  if (out.empty()) throw InputError("--seeds needs at least one seed");
+  if (out.empty()) throw InputError(option + " needs at least one seed");
   return out;
 }
 
@@ -434,6 +434,7 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
   };
   std::map<std::string, Category> byCategory;
   std::vector<int> wonPerSeed(seeds.size(), 0);
+  std::map<std::uint64_t, std::pair<int, int>> perNoiseSeed;  // cases won at the first probe seed, cases
   std::vector<RatioMean> ratiosPerSeed(seeds.size());
   int within = 0;
   double worst = 0;
@@ -443,6 +444,9 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
   std::vector<bool> wonFirst;
   for (const Result* r : rows) {
     const Verdict v = verdict(r->ours.front(), r->taubin, r->bilateral);
+    std::pair<int, int>& atNoise = perNoiseSeed[noiseSeedOf(r->c->noise)];
+    atNoise.first += v.win;
+    ++atNoise.second;
     families.push_back(r->c->family);
     wonFirst.push_back(v.win);
     std::string wonAt;
@@ -493,6 +497,12 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
     << within << " of " << rows.size() << "; worst ratio " << fixed(worst, 2) << " (" << worstCase
     << "); geometric mean ratio RMS " << fixed(ratiosPerSeed.front().rms(), 3) << ", normal error "
     << fixed(ratiosPerSeed.front().angle(), 3) << ".\n";
+  if (perNoiseSeed.size() > 1) {
+    s << "\nCases won per noise seed (probe seed " << seeds.front() << "; the pairs with noise seed 1):";
+    for (auto it = perNoiseSeed.begin(); it != perNoiseSeed.end(); ++it)
+      s << (it == perNoiseSeed.begin() ? " " : ", ") << it->first << ": " << it->second.first << " of " << it->second.second;
+    s << ".\n";
+  }
   if (seeds.size() > 1) {
     s << "\nCases won per probe seed:";
     for (size_t k = 0; k < seeds.size(); ++k) s << " " << seeds[k] << ": " << wonPerSeed[k] << (k + 1 < seeds.size() ? "," : "");
@@ -531,8 +541,9 @@ int usage(const char* error) {
          "  --pairs            only the ground-truth pairs\n"
          "  --quick            one pair and two small procedural meshes, as a smoke test\n"
          "  --seeds LIST       probe seeds of the denoiser, e.g. 1-8 or 1,3 (default 1); the report counts wins per seed\n"
-         "  --noise-seed N     another realization of the synthetic noises (default 1, the scoreboard's; same kinds and\n"
-         "                     levels; the pairs keep their own noise): how much of a result is the noise's luck\n"
+         "  --noise-seed LIST  realizations of the synthetic noises, e.g. 2 or 1-3 (default 1, the scoreboard's; same kinds and\n"
+         "                     levels; the pairs keep their own noise): how much of a result is the noise's luck; the\n"
+         "                     tuning run for a choice is --set tuning --noise-seed 1-3 (docs/denoising.md#the-evaluation)\n"
          "  --jobs N           cases evaluated at once (default 2; each method runs on one thread)\n"
          "  --paper            also the paper preset\n"
          "  --split            print the families of each set and exit\n"
@@ -569,7 +580,7 @@ int main(int argc, char** argv) {
   bool quick = false, pairsOnly = false, paper = false, splitOnly = false, noiseOnly = false, oraclesOnly = false;
   int jobs = 2;
   std::vector<std::uint64_t> seeds = {1};
-  std::uint64_t noiseSeed = 1;  // the synthetic noises' realization
+  std::vector<std::uint64_t> noiseSeeds = {1};  // the synthetic noises' realizations
   WhatIf whatIf;
   OracleCache cache{"build/eval-cache"};
   const char* env = std::getenv("GEOSHIFT_SHARED_DATA");
@@ -595,8 +606,8 @@ int main(int argc, char** argv) {
       else if (a == "--split") splitOnly = true;
       else if (a == "--oracles-only") oraclesOnly = true;
       else if (a == "--noise-estimate") noiseOnly = true;
-      else if (a == "--seeds") seeds = parseSeeds(value());
-      else if (a == "--noise-seed") noiseSeed = std::stoull(value());
+      else if (a == "--seeds") seeds = parseSeeds(value(), a);
+      else if (a == "--noise-seed") noiseSeeds = parseSeeds(value(), a);
       else if (a == "--jobs") jobs = std::max(1, std::stoi(value()));
       else if (a == "--strength") whatIf.strength = std::stod(value());
       else if (a == "--detail-bound-ratio") whatIf.detailBoundRatio = std::stod(value());
@@ -701,17 +712,19 @@ int main(int argc, char** argv) {
   if (!pairsOnly) {
     for (const MeshEntry& m : meshes) {
       if (!wanted(m.name) || !wantedSet(setOf(m.family))) continue;
-      std::vector<NoiseSpec> noises = noisesFor(m.name, noiseSeed);
-      if (quick) noises.resize(1);
-      for (const NoiseSpec& n : noises) {
-        tasks.push_back([&m, n, set = setOf(m.family), quick]() -> std::optional<Case> {
-          Mesh clean = quick ? buildMesh(m.family == "sphere" ? shapes::icosphere(3) : shapes::box(20, 14, 10, Vec3(1.0, 0.7, 0.5))).mesh
-                             : m.load();
-          normalizeToUnitCube(clean);
-          Case c{m.name, n.label, m.family, m.category, set, clean, clean, ""};
-          addNoise(c.noisy, n.options);
-          return c;
-        });
+      for (std::uint64_t noiseSeed : noiseSeeds) {
+        std::vector<NoiseSpec> noises = noisesFor(m.name, noiseSeed);
+        if (quick) noises.resize(1);
+        for (const NoiseSpec& n : noises) {
+          tasks.push_back([&m, n, noiseSeed, set = setOf(m.family), quick]() -> std::optional<Case> {
+            Mesh clean = quick ? buildMesh(m.family == "sphere" ? shapes::icosphere(3) : shapes::box(20, 14, 10, Vec3(1.0, 0.7, 0.5))).mesh
+                               : m.load();
+            normalizeToUnitCube(clean);
+            Case c{m.name, withNoiseSeed(n.label, noiseSeed), m.family, m.category, set, clean, clean, ""};
+            addNoise(c.noisy, n.options);
+            return c;
+          });
+        }
       }
     }
   }
@@ -816,7 +829,11 @@ int main(int argc, char** argv) {
   md << "# Denoising evaluation\n\nRMS: one-sided point-to-surface distance from the result's vertices to the clean surface "
         "(as MeshLab's Hausdorff filter), meshes scaled to the unit cube, ×10². Normal error: mean angle between "
         "corresponding face normals. The split and the noises: docs/denoising.md#the-evaluation.\n\n";
-  if (noiseSeed != 1) md << "Synthetic noises of seed " << noiseSeed << " (the scoreboard's: 1).\n\n";
+  if (noiseSeeds != std::vector<std::uint64_t>{1}) {
+    md << "Synthetic noises of seed" << (noiseSeeds.size() > 1 ? "s" : "");
+    for (size_t k = 0; k < noiseSeeds.size(); ++k) md << (k ? ", " : " ") << noiseSeeds[k];
+    md << " (the scoreboard's: 1; the pairs keep their own noise, counted with noise seed 1).\n\n";
+  }
   for (Set set : {Set::Validation, Set::Tuning})
     if (wantedSet(set)) md << report(set, results, seeds, paper);
   std::cout << md.str();

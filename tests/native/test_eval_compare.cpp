@@ -169,6 +169,33 @@ TEST_CASE("two runs compared: verdicts that changed, counts per seed and the dir
   CHECK_THAT(report, Catch::Contains("No case at a probe seed both runs share."));
 }
 
+TEST_CASE("cases of several noise realizations keep apart, and compare counts each realization", "[eval][compare]") {
+  const std::string label = "fixed 0.5 AEL random dir.";
+  CHECK(withNoiseSeed(label, 1) == label);  // the scoreboard's realization: labels as before
+  CHECK(withNoiseSeed(label, 3) == "fixed 0.5 AEL random dir. (noise seed 3)");
+  for (std::uint64_t seed : {1, 2, 3, 17, 1000})
+    CHECK(noiseSeedOf(withNoiseSeed(label, seed)) == seed);
+  CHECK(noiseSeedOf("uniform [0, 0.5] AEL random dir.") == 1);
+  CHECK(noiseSeedOf("(noise seed )") == 1);
+  CHECK(noiseSeedOf("odd (noise seed x2)") == 1);
+  // One mesh at noise seeds 1 and 2, and a pair (its own noise, so noise seed 1): after wins the
+  // mesh's noise seed 2 case only.
+  const std::vector<CaseFigures> before = {
+      {"tuning", "M", label, 1, 0.11, 5.0, 0.10, 5.0},
+      {"tuning", "M", withNoiseSeed(label, 2), 1, 0.11, 5.0, 0.10, 5.0},
+      {"tuning", "Pair", "its own", 1, 0.09, 4.0, 0.10, 5.0}};
+  std::vector<CaseFigures> after = before;
+  after[1].rms = 0.10;
+  const std::string report = compareResults(before, after);
+  INFO(report);
+  CHECK_THAT(report, Catch::Contains("## tuning: 3 cases in both runs"));
+  CHECK_THAT(report, Catch::Contains("| won at probe seed 1 | 1 | 2 |"));
+  CHECK_THAT(report, Catch::Contains("| won at noise seed 1 (of 2, probe seed 1) | 1 | 1 |"));
+  CHECK_THAT(report, Catch::Contains("| won at noise seed 2 (of 1, probe seed 1) | 0 | 1 |"));
+  // One realization alone: no rows per noise seed.
+  CHECK_THAT(compareResults({before[0]}, {after[0]}), !Catch::Contains("noise seed"));
+}
+
 TEST_CASE("group means: one per group, in the groups' order", "[eval][compare]") {
   const std::vector<double> m = groupMeans({"b", "a", "b", "c", "a", "b"}, {1, 2, 3, 4, 6, 5});
   REQUIRE(m.size() == 3);
