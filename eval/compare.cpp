@@ -68,7 +68,8 @@ std::string withNoiseSeed(const std::string& label, std::uint64_t noiseSeed) {
 std::uint64_t noiseSeedOf(const std::string& label) {
   const size_t at = label.rfind(kNoiseSeed);
   if (at == std::string::npos || label.back() != ')') return 1;
-  const std::string digits = label.substr(at + std::string(kNoiseSeed).size(), label.size() - 1 - at - std::string(kNoiseSeed).size());
+  const size_t from = at + std::char_traits<char>::length(kNoiseSeed);
+  const std::string digits = label.substr(from, label.size() - 1 - from);
   if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) return 1;
   return std::stoull(digits);
 }

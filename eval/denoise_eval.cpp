@@ -607,7 +607,11 @@ int main(int argc, char** argv) {
       else if (a == "--oracles-only") oraclesOnly = true;
       else if (a == "--noise-estimate") noiseOnly = true;
       else if (a == "--seeds") seeds = parseSeeds(value(), a);
-      else if (a == "--noise-seed") noiseSeeds = parseSeeds(value(), a);
+      else if (a == "--noise-seed") {
+        noiseSeeds = parseSeeds(value(), a);  // each realization once, in order
+        std::sort(noiseSeeds.begin(), noiseSeeds.end());
+        noiseSeeds.erase(std::unique(noiseSeeds.begin(), noiseSeeds.end()), noiseSeeds.end());
+      }
       else if (a == "--jobs") jobs = std::max(1, std::stoi(value()));
       else if (a == "--strength") whatIf.strength = std::stod(value());
       else if (a == "--detail-bound-ratio") whatIf.detailBoundRatio = std::stod(value());
