@@ -16,7 +16,7 @@ ctest --test-dir build/native-release --output-on-failure -j "$(nproc 2>/dev/nul
 # harness fuzzes for a short while (scripts/fuzz.sh; GEOSHIFT_FUZZ_SECONDS, default 15 s each).
 section "native under ASan + UBSan (build/native-asan)"
 asan_start=$SECONDS
-asan_targets=(geoshift geoshift_fuzzers)
+asan_targets=(geoshift geoshift_fuzzers denoise_eval)  # denoise_eval: its ctest smoke tests (eval/CMakeLists.txt)
 for f in tests/native/test_*.cpp; do asan_targets+=("$(basename "$f" .cpp)"); done
 asan_jobs="${GEOSHIFT_BUILD_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 mkdir -p build/native-asan
