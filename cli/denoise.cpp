@@ -76,15 +76,18 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
       line << ", a tie between starts settled by " << r.tieProbes << " more probe" << (r.tieProbes > 1 ? "s" : "")
            << (r.tieByNormals ? " and the normals' turn" : "");
     line << ")";
-    // docs/denoising.md#the-two-families-blended
-    if (r.blend.weight > 0) {
-      line << ", blended with ";
-      if (r.blend.taubinOnly)
-        line << "Taubin " << r.blend.presmoothingSteps << " steps alone";
+    // docs/denoising.md#the-blend-of-least-risk
+    auto blended = [&](const char* lead, const DenoiseResult::Blend& b) {
+      if (b.weight <= 0) return;
+      line << lead;
+      if (b.taubinOnly)
+        line << "Taubin " << b.presmoothingSteps << " steps alone";
       else
-        line << "Taubin " << r.blend.presmoothingSteps << " steps + " << r.blend.passes << " passes at h_r " << r.blend.rangeBandwidth;
-      line << " (its weight " << r.blend.weight << ")";
-    }
+        line << "Taubin " << b.presmoothingSteps << " steps + " << b.passes << " passes at h_r " << b.rangeBandwidth;
+      line << " (its weight " << b.weight << ")";
+    };
+    blended(", blended with ", r.blend);
+    blended(r.blend.weight > 0 ? ", then with " : ", blended with ", r.startBlend);
     // docs/denoising.md#impulsive-noise
     if (r.impulseGarrote)
       line << (o.impulseKurtosis > 0 ? "; the noise looks impulsive: outliers" : "; outliers (--impulse on)")

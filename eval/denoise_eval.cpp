@@ -170,7 +170,7 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, detailBoundRatio, levelLean, blendMargin, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
+  std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
@@ -186,7 +186,7 @@ struct WhatIf {
     if (strength) o.strength = *strength;
     if (detailBoundRatio) o.detailBoundRatio = *detailBoundRatio;
     if (levelLean) o.levelLean = *levelLean;
-    if (blendMargin) o.blendMargin = *blendMargin;
+    if (blendSpread) o.blendSpread = *blendSpread;
     if (minPieceVertices) o.minPieceVertices = *minPieceVertices;
     if (gradientRiskWeight) o.gradientRiskWeight = *gradientRiskWeight;
     if (impulseSpectrumKurtosis) o.impulseSpectrumKurtosis = *impulseSpectrumKurtosis;
@@ -238,6 +238,14 @@ std::string fixed3(double x) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.3f", x);
   return buf;
+}
+
+// A candidate blended in (DenoiseResult::Blend), for the scoreboard's note; empty when none.
+std::string blended(const std::string& lead, const DenoiseResult::Blend& b) {
+  if (b.weight <= 0) return "";
+  return lead + fixed3(b.weight) + " with " +
+         (b.taubinOnly ? "Taubin only " + std::to_string(b.presmoothingSteps)
+                       : "Taubin " + std::to_string(b.presmoothingSteps) + " + " + std::to_string(b.passes));
 }
 
 Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
@@ -293,11 +301,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
            << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "");
     note
          << (o.fixedPasses > 0 ? " (fixed)" : "")
-         << (r.blend.weight > 0 ? ", blended " + fixed3(r.blend.weight) + " with " +
-                                      (r.blend.taubinOnly ? "Taubin only " + std::to_string(r.blend.presmoothingSteps)
-                                                          : "Taubin " + std::to_string(r.blend.presmoothingSteps) + " + " +
-                                                                std::to_string(r.blend.passes))
-                                : "")
+         << blended(", blended ", r.blend) << blended(", then ", r.startBlend)
          << (r.impulseGarrote ? ", impulse garrote" : "")
          << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe") +
                                    (r.tieByNormals ? ", by normals" : "")
@@ -557,7 +561,7 @@ int usage(const char* error) {
          "  --tie-standard-errors, --tie-normals on|off, --input-candidate on|off, --spatial-order on|off,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
-         "  --gradient-risk-weight, --impulse-spectrum-kurtosis, --min-piece (minPieceVertices), --blend-margin\n"
+         "  --gradient-risk-weight, --impulse-spectrum-kurtosis, --min-piece (minPieceVertices), --blend-spread\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
@@ -616,7 +620,7 @@ int main(int argc, char** argv) {
       else if (a == "--strength") whatIf.strength = std::stod(value());
       else if (a == "--detail-bound-ratio") whatIf.detailBoundRatio = std::stod(value());
       else if (a == "--level-lean") whatIf.levelLean = std::stod(value());
-      else if (a == "--blend-margin") whatIf.blendMargin = std::stod(value());
+      else if (a == "--blend-spread") whatIf.blendSpread = std::stod(value());
       else if (a == "--gradient-risk-weight") whatIf.gradientRiskWeight = std::stod(value());
       else if (a == "--min-piece") whatIf.minPieceVertices = std::stoi(value());
       else if (a == "--impulse-spectrum-kurtosis") whatIf.impulseSpectrumKurtosis = std::stod(value());

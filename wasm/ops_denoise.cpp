@@ -41,6 +41,10 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("blendPasses", r.blend.passes);
       out.stats.set("blendTaubinOnly", r.blend.taubinOnly ? "yes" : "no");
       out.stats.set("blendRangeBandwidth", r.blend.rangeBandwidth);
+      out.stats.set("startBlendWeight", r.startBlend.weight);
+      out.stats.set("startBlendSteps", r.startBlend.presmoothingSteps);
+      out.stats.set("startBlendPasses", r.startBlend.passes);
+      out.stats.set("startBlendRangeBandwidth", r.startBlend.rangeBandwidth);
       out.stats.set("displacementKurtosis", r.displacementKurtosis);
       out.stats.set("spectrumKurtosis", r.spectrumKurtosis);
     }

@@ -32,7 +32,7 @@ void validate(const DenoiseOptions& o) {
     bad("gradient risk weight must be within [0, 10] (got " + std::to_string(o.gradientRiskWeight) + ")");
   if (!(o.impulseSpectrumKurtosis >= 0) || !std::isfinite(o.impulseSpectrumKurtosis))
     bad("impulse spectrum kurtosis must be >= 0 (0: not used; got " + std::to_string(o.impulseSpectrumKurtosis) + ")");
-  if (!(o.blendMargin >= 0 && o.blendMargin <= 1)) bad("blend margin must be within [0, 1] (got " + std::to_string(o.blendMargin) + ")");
+  if (!(o.blendSpread >= 0 && o.blendSpread <= 1000)) bad("blend spread must be within [0, 1000] (got " + std::to_string(o.blendSpread) + ")");
   if (!(o.levelLean > 0 && o.levelLean <= 10)) bad("level lean must be within (0, 10] (got " + std::to_string(o.levelLean) + ")");
   if (o.rangeBandwidths.empty()) bad("range bandwidths need at least one candidate h_r");
   for (double hr : o.rangeBandwidths)
@@ -494,6 +494,11 @@ void correctOutliers(const Mesh& mesh, const std::vector<Vec3>& input, std::vect
   }
 }
 
+double blendWeight(double gap, double difference, double spread) {
+  if (!(difference > 0) || !(spread > 0)) return 0.0;
+  return std::clamp(0.5 * (1 - gap / (spread * difference)), 0.0, 1.0);
+}
+
 DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   validate(o);
@@ -708,20 +713,46 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     passes.candidate(track, winner.steps, winner.taubinOnly, winner.passes, winner.rangeBandwidth, result);
     x = std::move(track.positions);
   }
-  if (o.blendMargin > 0) {
-    // The best of the other family, blended in by how close it ranks (DenoiseOptions::blendMargin).
-    size_t other = scored.size();
-    for (size_t i = 0; i < scored.size(); ++i)
-      if (scored[i].taubinOnly != winner.taubinOnly && (other == scored.size() || rank(scored[i].sums) < rank(scored[other].sums)))
-        other = i;
-    const double gap = other < scored.size() ? rank(scored[other].sums) - rank(winnerSums) : o.blendMargin;
-    if (gap < o.blendMargin) {
-      const CandidateRace::Scored& c = scored[other];
-      const double w = std::min(1.0, 0.5 * (1 - gap / o.blendMargin));
+  if (o.blendSpread > 0) {
+    // The blend of least risk (DenoiseOptions::blendSpread): first the best of the other family,
+    // then the best with passes from the other start, each against the blend so far.
+    auto best = [&](auto&& admits) {
+      size_t b = scored.size();
+      for (size_t i = 0; i < scored.size(); ++i)
+        if (admits(scored[i]) && (b == scored.size() || rank(scored[i].sums) < rank(scored[b].sums))) b = i;
+      return b;
+    };
+    const size_t other = best([&](const CandidateRace::Scored& c) { return c.taubinOnly != winner.taubinOnly; });
+    double blendedRank = rank(winnerSums);
+    auto blendIn = [&](size_t i, DenoiseResult::Blend& record) {
+      if (i == scored.size()) return;
+      const CandidateRace::Scored& c = scored[i];
+      const double gap = rank(c.sums) - blendedRank;
+      // Computed again only within reach: D has not exceeded 0.19 σ² on the tuning set, and a
+      // candidate behind by more than spread × D takes no weight.
+      constexpr double kBlendReach = 0.25;
+      if (gap >= kBlendReach * o.blendSpread) return;
       Track track{input, &inputUpdate};
       passes.candidate(track, c.steps, c.taubinOnly, c.passes, c.rangeBandwidth, result);
+      const std::vector<Vec3>& N = risk.normals();
+      double squares = 0;
+      for (size_t v = 0; v < x.size(); ++v) {
+        const double d = (track.positions[v] - x[v]).dot(N[v]);
+        squares += d * d;
+      }
+      const double ranked = rank.sigma * risk.strength();
+      const double difference = squares / (std::max(1, risk.measuredVertices()) * ranked * ranked);
+      const double w = blendWeight(gap, difference, o.blendSpread);
+      if (w == 0) return;
       for (size_t v = 0; v < x.size(); ++v) x[v] = (1 - w) * x[v] + w * track.positions[v];
-      result.blend = {w, c.steps, c.taubinOnly, c.taubinOnly ? 0.0 : c.rangeBandwidth, c.passes};
+      blendedRank = (1 - w) * blendedRank + w * rank(c.sums) - w * (1 - w) * difference;
+      record = {w, c.steps, c.taubinOnly, c.taubinOnly ? 0.0 : c.rangeBandwidth, c.passes};
+    };
+    blendIn(other, result.blend);
+    // The other start than the winner's or, where Taubin alone won, than the best with passes.
+    if (!winner.taubinOnly || other < scored.size()) {
+      const int start = winner.taubinOnly ? scored[other].steps : winner.steps;
+      blendIn(best([&](const CandidateRace::Scored& c) { return !c.taubinOnly && c.steps != start; }), result.startBlend);
     }
   }
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());

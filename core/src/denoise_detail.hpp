@@ -17,4 +17,9 @@ DenoiseResult denoisePaper(Mesh& mesh, const DenoiseOptions& options, const Prog
 void correctOutliers(const Mesh& mesh, const std::vector<Vec3>& input, std::vector<Vec3>& x,
                      const std::vector<Vec3>& normals, double tau);
 
+// The weight w of candidate O in (1 − w) x_W + w x_O where the blend's risk, (1 − w) R_W + w R_O −
+// w (1 − w) D, is least: 0.5 (1 − gap / (spread D)), gap = R_O − R_W, clamped to [0, 1]; 0 where D
+// is not positive (docs/denoising.md#the-blend-of-least-risk). `spread` scales D (1: the optimum).
+double blendWeight(double gap, double difference, double spread);
+
 }  // namespace geoshift::denoise_detail

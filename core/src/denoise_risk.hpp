@@ -80,6 +80,7 @@ class RiskEstimate {
   const std::vector<Vec3>& normals() const { return normals_; }
   double strength() const { return strength_; }
   int probedVertices() const { return probed_; }
+  int measuredVertices() const { return measured_; }
 
  private:
   // Whether halfedge h stands for its edge (once per edge) between two measured vertices.

@@ -83,6 +83,10 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["blend_passes"] = r.blend.passes;
     out["blend_taubin_only"] = r.blend.taubinOnly;
     out["blend_range_bandwidth"] = r.blend.rangeBandwidth;
+    out["start_blend_weight"] = r.startBlend.weight;
+    out["start_blend_steps"] = r.startBlend.presmoothingSteps;
+    out["start_blend_passes"] = r.startBlend.passes;
+    out["start_blend_range_bandwidth"] = r.startBlend.rangeBandwidth;
     out["displacement_kurtosis"] = r.displacementKurtosis;
     out["spectrum_kurtosis"] = r.spectrumKurtosis;
     out["mean_iterations"] = r.meanIterations;

@@ -210,7 +210,7 @@ void bindOptions(py::module_& m) {
       .def_readwrite("taubin_only_steps", &DenoiseOptions::taubinOnlySteps)
       .def_readwrite("candidate_taubin", &DenoiseOptions::candidateTaubin)
       .def_readwrite("taubin_only_margin", &DenoiseOptions::taubinOnlyMargin)
-      .def_readwrite("blend_margin", &DenoiseOptions::blendMargin)
+      .def_readwrite("blend_spread", &DenoiseOptions::blendSpread)
       .def_readwrite("max_passes", &DenoiseOptions::maxPasses)
       .def_readwrite("patience", &DenoiseOptions::patience)
       .def_readwrite("fixed_passes", &DenoiseOptions::fixedPasses)

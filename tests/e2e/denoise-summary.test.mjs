@@ -43,6 +43,18 @@ test('the candidate of the other family blended in is named with its share of th
     '15 Taubin steps + 2 passes at Keep edges 0.35');
 });
 
+test('the candidate of the other start blended in after it is named with its share too', async () => {
+  assert.equal(await chosen({ ...PASSES, blendWeight: 0.314, blendSteps: 12, blendPasses: 0, blendTaubinOnly: 'yes',
+    startBlendWeight: 0.2, startBlendSteps: 3, startBlendPasses: 4 }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35, blended with 12 Taubin steps alone (31% of the weight),' +
+    ' then with 3 Taubin steps + 4 passes (20% of the weight)');
+  // Only the other start's.
+  assert.equal(await chosen({ ...PASSES, blendWeight: 0, startBlendWeight: 0.5, startBlendSteps: 3, startBlendPasses: 1 }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35, blended with 3 Taubin steps + 1 pass (50% of the weight)');
+  assert.equal(await chosen({ ...PASSES, startBlendWeight: 0, startBlendSteps: 0, startBlendPasses: 0 }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35');
+});
+
 test('a tie says how many more probes settled it, and when the normals did', async () => {
   assert.equal(await chosen({ ...PASSES, tieProbes: 1 }),
     '15 Taubin steps + 2 passes at Keep edges 0.35; a close call between two starts, settled by 1 more probe');

@@ -477,45 +477,68 @@ TEST_CASE("a tie between starts is settled by more probes, and the result is the
   REQUIRE(none.positions() == off.positions());
 }
 
-// docs/denoising.md#the-two-families-blended. The result is the winner and the best candidate of the
-// other family, each computed again alone, mixed with the weight reported; without the margin, the
-// winner alone.
-TEST_CASE("the best candidates of the two families are blended by how close they rank", "[denoise][blend]") {
+// docs/denoising.md#the-blend-of-least-risk. The result is the winner, the best candidate of the
+// other family and the best with passes from the other start, each computed again alone, mixed with
+// the weights reported in that order; without blending, the winner alone.
+TEST_CASE("the winner is blended with the other family's best and the other start's", "[denoise][blend]") {
   const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
-  // The widest margin the options allow: the other family's best is always blended in.
+  // The widest spread the options allow: both are computed and take about half the weight.
   DenoiseOptions wide;
-  wide.blendMargin = 1;
+  wide.blendSpread = 1000;
   Mesh m = noisy;
   const DenoiseResult r = denoise(m, wide);
+  auto recipe = [](const DenoiseResult::Blend& b) {
+    return "Taubin " + std::to_string(b.presmoothingSteps) + (b.taubinOnly ? " alone" : " + " + std::to_string(b.passes) + " passes") +
+           " (" + std::to_string(b.weight) + ")";
+  };
   INFO("winner: Taubin " << r.presmoothingSteps << (r.taubinOnly ? " alone" : " + " + std::to_string(r.passes) + " passes")
-                         << "; blended " << r.blend.weight << " with Taubin " << r.blend.presmoothingSteps
-                         << (r.blend.taubinOnly ? " alone" : " + " + std::to_string(r.blend.passes) + " passes"));
+                         << "; blended with " << recipe(r.blend) << ", then with " << recipe(r.startBlend));
   REQUIRE_FALSE(r.impulseGarrote);
   REQUIRE_FALSE(r.keptInput);
-  REQUIRE(r.blend.weight > 0);
-  REQUIRE(r.blend.weight < 1);
+  REQUIRE(r.blend.weight > 0.4);
+  REQUIRE(r.blend.weight < 0.6);
   REQUIRE(r.blend.taubinOnly != r.taubinOnly);
+  REQUIRE(r.startBlend.weight > 0.4);
+  REQUIRE(r.startBlend.weight < 0.6);
+  REQUIRE_FALSE(r.startBlend.taubinOnly);
+  const int start = r.taubinOnly ? r.blend.presmoothingSteps : r.presmoothingSteps;
+  REQUIRE(r.startBlend.presmoothingSteps != start);
   const std::vector<Vec3> winner = candidateAlone(noisy, r.presmoothingSteps, r.passes, r.taubinOnly, r.rangeBandwidth, r.noiseLevel);
   const std::vector<Vec3> other =
       candidateAlone(noisy, r.blend.presmoothingSteps, r.blend.passes, r.blend.taubinOnly, r.blend.rangeBandwidth, r.noiseLevel);
+  const std::vector<Vec3> otherStart =
+      candidateAlone(noisy, r.startBlend.presmoothingSteps, r.startBlend.passes, false, r.startBlend.rangeBandwidth, r.noiseLevel);
   REQUIRE(winner != other);
+  REQUIRE(winner != otherStart);
   for (int v = 0; v < noisy.vertexCount(); ++v) {
-    const Vec3 expected = (1 - r.blend.weight) * winner[v] + r.blend.weight * other[v];
+    const Vec3 first = (1 - r.blend.weight) * winner[v] + r.blend.weight * other[v];
+    const Vec3 expected = (1 - r.startBlend.weight) * first + r.startBlend.weight * otherStart[v];
     REQUIRE(m.position(v) == expected);
   }
 
   // Threads change nothing in the blend either.
   Mesh one = noisy;
   wide.threads = 1;
-  REQUIRE(denoise(one, wide).blend.weight == r.blend.weight);
+  const DenoiseResult r1 = denoise(one, wide);
+  REQUIRE(r1.blend.weight == r.blend.weight);
+  REQUIRE(r1.startBlend.weight == r.startBlend.weight);
   REQUIRE(one.positions() == m.positions());
 
-  // No margin: the winner alone, and nothing reported.
+  // The default's spread weighs by the risk: weights within [0, 1], and a different mix.
+  Mesh def = noisy;
+  const DenoiseResult rd = denoise(def, DenoiseOptions{});
+  REQUIRE(rd.blend.weight >= 0);
+  REQUIRE(rd.blend.weight <= 1);
+  REQUIRE(rd.startBlend.weight >= 0);
+  REQUIRE(rd.startBlend.weight <= 1);
+
+  // No spread: the winner alone, and nothing reported.
   DenoiseOptions off;
-  off.blendMargin = 0;
+  off.blendSpread = 0;
   Mesh plain = noisy;
   const DenoiseResult r0 = denoise(plain, off);
   REQUIRE(r0.blend.weight == 0);
+  REQUIRE(r0.startBlend.weight == 0);
   REQUIRE(plain.positions() == candidateAlone(noisy, r0.presmoothingSteps, r0.passes, r0.taubinOnly, r0.rangeBandwidth, r0.noiseLevel));
 }
 
@@ -532,7 +555,7 @@ TEST_CASE("a tie left unsettled by the probes goes to the normals that turn leas
     o.tieMargin = 1e9;
     o.tieProbes = 2;
     o.tieStandardErrors = 1e9;
-    o.blendMargin = 0;  // the contender's own normals: without the other family blended in
+    o.blendSpread = 0;  // the contender's own normals: without the other candidates blended in
     Mesh with = noisy, without = noisy;
     const DenoiseResult r = denoise(with, o);
     o.tieByNormals = false;
@@ -772,8 +795,9 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.detailBoundRatio = 1.5; }, "detail bound ratio above 1");
   refuses([](DenoiseOptions& o) { o.detailBoundRatio = std::nan(""); }, "NaN detail bound ratio");
   refuses([](DenoiseOptions& o) { o.levelLean = 0; }, "level lean 0");
-  refuses([](DenoiseOptions& o) { o.blendMargin = -0.01; }, "negative blend margin");
-  refuses([](DenoiseOptions& o) { o.blendMargin = std::nan(""); }, "NaN blend margin");
+  refuses([](DenoiseOptions& o) { o.blendSpread = -0.01; }, "negative blend spread");
+  refuses([](DenoiseOptions& o) { o.blendSpread = 1001; }, "blend spread beyond 1000");
+  refuses([](DenoiseOptions& o) { o.blendSpread = std::nan(""); }, "NaN blend spread");
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = -0.1; }, "negative gradient risk weight");
   refuses([](DenoiseOptions& o) { o.impulseSpectrumKurtosis = -1; }, "negative impulse spectrum kurtosis");
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = std::nan(""); }, "NaN gradient risk weight");

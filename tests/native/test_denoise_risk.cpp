@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "denoise_detail.hpp"
 #include "denoise_risk.hpp"
 #include "geoshift/geometry.hpp"
 #include "geoshift/shapes.hpp"
@@ -246,4 +247,33 @@ TEST_CASE("risk estimate: the edge-difference risk is unbiased for the error's d
       REQUIRE(r.ranked == Approx(r.position + r.gradient));
     }
   }
+}
+
+// docs/denoising.md#the-blend-of-least-risk. The blend (1 − w) x_W + w x_O has the risk
+// (1 − w) R_W + w R_O − w (1 − w) D; the weight taken must be where that is least over [0, 1],
+// checked against a dense grid of weights.
+TEST_CASE("the blend's weight is the one of least risk", "[denoise][blend]") {
+  auto risk = [](double w, double gap, double d) { return w * gap - w * (1 - w) * d; };  // R_W = 0
+  for (double d : {0.002, 0.01, 0.03, 0.1, 0.19}) {
+    for (double gap = -0.25; gap <= 0.25; gap += 0.0125) {
+      const double w = blendWeight(gap, d, 1);
+      INFO("gap " << gap << ", D " << d << ": weight " << w);
+      REQUIRE(w >= 0);
+      REQUIRE(w <= 1);
+      double bestRisk = risk(0, gap, d), bestW = 0;
+      for (int i = 1; i <= 100000; ++i) {
+        const double t = i / 100000.0;
+        if (risk(t, gap, d) < bestRisk) bestRisk = risk(t, gap, d), bestW = t;
+      }
+      REQUIRE(risk(w, gap, d) <= bestRisk + 1e-12);
+      REQUIRE(std::abs(w - bestW) <= 1e-4);
+      // The spread scales D; no weight without a difference.
+      REQUIRE(blendWeight(gap, d, 2.5) == Approx(blendWeight(gap, 2.5 * d, 1)).margin(1e-15));
+    }
+  }
+  REQUIRE(blendWeight(0.0, 0.05, 1) == 0.5);  // equal ranks: half and half
+  REQUIRE(blendWeight(0.05, 0.05, 1) == 0.0);  // behind by D: nothing
+  REQUIRE(blendWeight(-0.1, 0.05, 1) == 1.0);  // ahead by D or more: the other alone
+  REQUIRE(blendWeight(-0.1, 0.0, 1) == 0.0);
+  REQUIRE(blendWeight(0.0, 0.05, 0) == 0.0);
 }

@@ -8,7 +8,7 @@ export type DenoiseStats = Readonly<Record<string, number | string | undefined>>
 
 /**
  * "15 Taubin steps + 2 passes at Keep edges 0.35", "27 Taubin steps alone (no pass)" or that the mesh
- * was left as it was, with the candidate of the other family blended in, what decided a close call between the starts, whether only outliers were
+ * was left as it was, with the candidates blended in, what decided a close call between the starts, whether only outliers were
  * moved and how many pieces too small to denoise were left as they were; null for stats
  * that are not the default denoiser's (another filter, the paper preset).
  */
@@ -22,11 +22,18 @@ export function chosenSummary(stats: DenoiseStats): string | null {
   let text = stats.taubinOnly === 'yes' ? `${recipe(steps, passes, true)} (no pass)` : recipe(steps, passes, false);
   if (stats.taubinOnly !== 'yes' && typeof stats.rangeBandwidth === 'number' && stats.rangeBandwidth > 0)
     text += ` at Keep edges ${stats.rangeBandwidth}`;
-  // docs/denoising.md#the-two-families-blended: the other family's best, mixed in by how close it ranked.
+  // docs/denoising.md#the-blend-of-least-risk: the other family's best, then the other start's,
+  // each mixed in with the weight of least estimated error.
   const weight = stats.blendWeight;
-  if (typeof weight === 'number' && weight > 0 && typeof stats.blendSteps === 'number') {
-    const other = recipe(stats.blendSteps, Number(stats.blendPasses), stats.blendTaubinOnly === 'yes');
-    text += `, blended with ${other} (${Math.round(weight * 100)}% of the weight)`;
+  const blended = typeof weight === 'number' && weight > 0 && typeof stats.blendSteps === 'number';
+  if (blended) {
+    const other = recipe(stats.blendSteps as number, Number(stats.blendPasses), stats.blendTaubinOnly === 'yes');
+    text += `, blended with ${other} (${Math.round((weight as number) * 100)}% of the weight)`;
+  }
+  const startWeight = stats.startBlendWeight;
+  if (typeof startWeight === 'number' && startWeight > 0 && typeof stats.startBlendSteps === 'number') {
+    const start = recipe(stats.startBlendSteps, Number(stats.startBlendPasses), false);
+    text += `, ${blended ? 'then' : 'blended'} with ${start} (${Math.round(startWeight * 100)}% of the weight)`;
   }
   // docs/denoising.md#ties-between-starts: more probes, and where they leave it open, the normals.
   const probes = stats.tieProbes;

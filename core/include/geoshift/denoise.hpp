@@ -83,14 +83,14 @@ struct DenoiseOptions {
     return t;
   }();
   double taubinOnlyMargin = 0.005;
-  // The two families hedged: where the best candidate of the other family (Taubin alone against a
-  // start with passes) ranks within blendMargin (in units of σ²) of the winner, the result is their
-  // blend, the other taking 0.5 × (1 − gap / blendMargin) of the weight (more than half where it ranks
-  // below the winner, a Taubin-only candidate short of taubinOnlyMargin). Within such gaps the
-  // risk's own bias on a mesh decides which is better, one way on one mesh and the other way on the
-  // next; the blend is nearer the truth than the worse of the two by more than it is farther than
-  // the better (docs/denoising.md#the-two-families-blended). 0: never.
-  double blendMargin = 0.02;
+  // The blend of least risk (docs/denoising.md#the-blend-of-least-risk). With errors e_W, e_O along
+  // N, the blend (1 − w) x_W + w x_O has the risk (1 − w) R_W + w R_O − w (1 − w) D, D their mean
+  // squared difference along N over σ²: least at w = 0.5 (1 − (R_O − R_W) / D). The winner is so
+  // blended with the best candidate of the other family (Taubin alone against a start with
+  // passes), and then with the best candidate with passes from the other start, each against the
+  // blend so far. blendSpread scales D in that weight (1: the risk's own optimum; larger blends
+  // across larger gaps); 0: never. Within [0, 1000].
+  double blendSpread = 1;
   int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk
   int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
@@ -220,15 +220,17 @@ struct DenoiseResult {
   double spectrumKurtosis = 0;      // of the input's highest frequencies (impulseSpectrumKurtosis); 0: not read
   bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)
   bool keptInput = false;       // no candidate ranked below the input: returned as it was (inputCandidate)
-  // The candidate of the other family blended in (blendMargin), and its weight (0: none; then the
-  // other fields are 0). The fields above describe the winner.
+  // The candidates blended in (blendSpread), each with its weight in the mix it joined (0: none;
+  // then the other fields are 0): `blend`, the other family's, mixed with the winner; `startBlend`,
+  // the other start's, mixed with that. The result is (1 − s) ((1 − b) x_W + b x_O) + s x_S for the
+  // weights b and s. The fields above describe the winner.
   struct Blend {
     double weight = 0;
     int presmoothingSteps = 0;
     bool taubinOnly = false;
     double rangeBandwidth = 0;
     int passes = 0;
-  } blend;
+  } blend, startBlend;
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
                                 // 0 when below a tenth of the noise level (not resolved)
   size_t neighborhoodBytes = 0;
