@@ -524,7 +524,7 @@ TEST_CASE("the winner is blended with the other family's best and the other star
   REQUIRE(r1.startBlend.weight == r.startBlend.weight);
   REQUIRE(one.positions() == m.positions());
 
-  // The default's spread weighs by the risk: weights within [0, 1], and a different mix.
+  // The default's spread weighs by the risk: weights within [0, 1].
   Mesh def = noisy;
   const DenoiseResult rd = denoise(def, DenoiseOptions{});
   REQUIRE(rd.blend.weight >= 0);

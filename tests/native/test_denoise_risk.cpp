@@ -267,13 +267,13 @@ TEST_CASE("the blend's weight is the one of least risk", "[denoise][blend]") {
       }
       REQUIRE(risk(w, gap, d) <= bestRisk + 1e-12);
       REQUIRE(std::abs(w - bestW) <= 1e-4);
-      // The spread scales D; no weight without a difference.
+      // The spread scales D.
       REQUIRE(blendWeight(gap, d, 2.5) == Approx(blendWeight(gap, 2.5 * d, 1)).margin(1e-15));
     }
   }
   REQUIRE(blendWeight(0.0, 0.05, 1) == 0.5);  // equal ranks: half and half
   REQUIRE(blendWeight(0.05, 0.05, 1) == 0.0);  // behind by D: nothing
   REQUIRE(blendWeight(-0.1, 0.05, 1) == 1.0);  // ahead by D or more: the other alone
-  REQUIRE(blendWeight(-0.1, 0.0, 1) == 0.0);
+  REQUIRE(blendWeight(-0.1, 0.0, 1) == 0.0);  // no difference: no weight
   REQUIRE(blendWeight(0.0, 0.05, 0) == 0.0);
 }

@@ -24,17 +24,10 @@ export function chosenSummary(stats: DenoiseStats): string | null {
     text += ` at Keep edges ${stats.rangeBandwidth}`;
   // docs/denoising.md#the-blend-of-least-risk: the other family's best, then the other start's,
   // each mixed in with the weight of least estimated error.
-  const weight = stats.blendWeight;
-  const blended = typeof weight === 'number' && weight > 0 && typeof stats.blendSteps === 'number';
-  if (blended) {
-    const other = recipe(stats.blendSteps as number, Number(stats.blendPasses), stats.blendTaubinOnly === 'yes');
-    text += `, blended with ${other} (${Math.round((weight as number) * 100)}% of the weight)`;
-  }
-  const startWeight = stats.startBlendWeight;
-  if (typeof startWeight === 'number' && startWeight > 0 && typeof stats.startBlendSteps === 'number') {
-    const start = recipe(stats.startBlendSteps, Number(stats.startBlendPasses), false);
-    text += `, ${blended ? 'then' : 'blended'} with ${start} (${Math.round(startWeight * 100)}% of the weight)`;
-  }
+  const other = blendedIn(stats.blendWeight, stats.blendSteps, stats.blendPasses, stats.blendTaubinOnly === 'yes');
+  if (other) text += `, blended with ${other}`;
+  const start = blendedIn(stats.startBlendWeight, stats.startBlendSteps, stats.startBlendPasses, false);
+  if (start) text += `, ${other ? 'then' : 'blended'} with ${start}`;
   // docs/denoising.md#ties-between-starts: more probes, and where they leave it open, the normals.
   const probes = stats.tieProbes;
   if (typeof probes === 'number' && probes > 0)
@@ -43,6 +36,12 @@ export function chosenSummary(stats: DenoiseStats): string | null {
       (stats.tieByNormals === 'yes' ? ' and then by the smoother normals' : '');
   if (stats.impulseGarrote === 'yes') text += '; impulsive noise: only the outliers moved';
   return withKeptPieces(text, stats);
+}
+
+/** "12 Taubin steps alone (31% of the weight)": a candidate blended in, or null where none was. */
+function blendedIn(weight: unknown, steps: unknown, passes: unknown, taubinOnly: boolean): string | null {
+  if (typeof weight !== 'number' || !(weight > 0) || typeof steps !== 'number') return null;
+  return `${recipe(steps, Number(passes), taubinOnly)} (${Math.round(weight * 100)}% of the weight)`;
 }
 
 /** "27 Taubin steps alone" or "15 Taubin steps + 2 passes": one candidate. */
