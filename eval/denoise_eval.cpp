@@ -175,7 +175,7 @@ struct WhatIf {
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes, minPieceVertices;
-  std::optional<bool> blendRuns, refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
+  std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
       spatialOrder;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
@@ -187,7 +187,6 @@ struct WhatIf {
     if (detailBoundRatio) o.detailBoundRatio = *detailBoundRatio;
     if (levelLean) o.levelLean = *levelLean;
     if (blendSpread) o.blendSpread = *blendSpread;
-    if (blendRuns) o.blendRuns = *blendRuns;
     if (minPieceVertices) o.minPieceVertices = *minPieceVertices;
     if (gradientRiskWeight) o.gradientRiskWeight = *gradientRiskWeight;
     if (impulseSpectrumKurtosis) o.impulseSpectrumKurtosis = *impulseSpectrumKurtosis;
@@ -302,9 +301,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
            << (o.rangeBandwidths.size() > 1 ? " at h_r " + fixed3(r.rangeBandwidth) : "");
     note
          << (o.fixedPasses > 0 ? " (fixed)" : "")
-         << blended(", blended ", r.blend) << blended(", then ", r.startBlend);
-    for (const DenoiseResult::Blend& b : r.runBlends) note << blended(", then ", b);
-    note
+         << blended(", blended ", r.blend) << blended(", then ", r.startBlend)
          << (r.impulseGarrote ? ", impulse garrote" : "")
          << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe") +
                                    (r.tieByNormals ? ", by normals" : "")
@@ -624,7 +621,6 @@ int main(int argc, char** argv) {
       else if (a == "--detail-bound-ratio") whatIf.detailBoundRatio = std::stod(value());
       else if (a == "--level-lean") whatIf.levelLean = std::stod(value());
       else if (a == "--blend-spread") whatIf.blendSpread = std::stod(value());
-      else if (a == "--blend-runs") whatIf.blendRuns = value() == "on";
       else if (a == "--gradient-risk-weight") whatIf.gradientRiskWeight = std::stod(value());
       else if (a == "--min-piece") whatIf.minPieceVertices = std::stoi(value());
       else if (a == "--impulse-spectrum-kurtosis") whatIf.impulseSpectrumKurtosis = std::stod(value());

@@ -754,31 +754,6 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       const int start = winner.taubinOnly ? scored[other].steps : winner.steps;
       blendIn(best([&](const CandidateRace::Scored& c) { return !c.taubinOnly && c.steps != start; }), result.startBlend);
     }
-    if (o.blendRuns) {
-      // Every run with passes not yet in the mix, its best candidate, in the order of their ranks.
-      auto sameRun = [](const CandidateRace::Scored& a, const CandidateRace::Scored& b) {
-        return !a.taubinOnly && !b.taubinOnly && a.steps == b.steps && a.rangeBandwidth == b.rangeBandwidth;
-      };
-      auto inMix = [&](const CandidateRace::Scored& c) {
-        if (sameRun(c, winner)) return true;
-        for (const DenoiseResult::Blend* b : {&result.blend, &result.startBlend})
-          if (b->weight > 0 && !b->taubinOnly && b->presmoothingSteps == c.steps && b->rangeBandwidth == c.rangeBandwidth) return true;
-        return false;
-      };
-      std::vector<size_t> runBests;
-      for (size_t i = 0; i < scored.size(); ++i) {
-        if (scored[i].taubinOnly || inMix(scored[i])) continue;
-        auto it = std::find_if(runBests.begin(), runBests.end(), [&](size_t j) { return sameRun(scored[j], scored[i]); });
-        if (it == runBests.end()) runBests.push_back(i);
-        else if (rank(scored[i].sums) < rank(scored[*it].sums)) *it = i;
-      }
-      std::sort(runBests.begin(), runBests.end(), [&](size_t a, size_t b) { return rank(scored[a].sums) < rank(scored[b].sums); });
-      for (size_t i : runBests) {
-        DenoiseResult::Blend record;
-        blendIn(i, record);
-        if (record.weight > 0) result.runBlends.push_back(record);
-      }
-    }
   }
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());
   result.displacementKurtosis = kurtosis(displacements);

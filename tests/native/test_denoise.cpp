@@ -542,55 +542,6 @@ TEST_CASE("the winner is blended with the other family's best and the other star
   REQUIRE(plain.positions() == candidateAlone(noisy, r0.presmoothingSteps, r0.passes, r0.taubinOnly, r0.rangeBandwidth, r0.noiseLevel));
 }
 
-// docs/denoising.md#the-blend-of-least-risk. With blendRuns, the best of every run with passes not
-// yet in the mix joins it too: the result is every reported candidate, computed again alone, mixed
-// in the order reported, and no run appears twice.
-TEST_CASE("with blendRuns every run's best joins the blend", "[denoise][blend]") {
-  const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
-  DenoiseOptions o;
-  o.blendSpread = 1000;  // every partner within reach takes about half the weight
-  o.blendRuns = true;
-  Mesh m = noisy;
-  const DenoiseResult r = denoise(m, o);
-  REQUIRE_FALSE(r.impulseGarrote);
-  REQUIRE_FALSE(r.keptInput);
-  REQUIRE(r.blend.weight > 0);
-  REQUIRE(r.startBlend.weight > 0);
-  // Two starts and two bandwidths are four runs; the winner's and the start blend's are in the mix.
-  REQUIRE(r.runBlends.size() == o.presmoothing.size() * o.rangeBandwidths.size() - 2);
-  std::vector<std::pair<int, double>> runs;
-  if (!r.taubinOnly) runs.emplace_back(r.presmoothingSteps, r.rangeBandwidth);
-  if (!r.blend.taubinOnly) runs.emplace_back(r.blend.presmoothingSteps, r.blend.rangeBandwidth);
-  runs.emplace_back(r.startBlend.presmoothingSteps, r.startBlend.rangeBandwidth);
-  std::vector<Vec3> x = candidateAlone(noisy, r.presmoothingSteps, r.passes, r.taubinOnly, r.rangeBandwidth, r.noiseLevel);
-  auto mix = [&](const DenoiseResult::Blend& b) {
-    const std::vector<Vec3> y = candidateAlone(noisy, b.presmoothingSteps, b.passes, b.taubinOnly, b.rangeBandwidth, r.noiseLevel);
-    REQUIRE(y != x);
-    for (size_t v = 0; v < x.size(); ++v) x[v] = (1 - b.weight) * x[v] + b.weight * y[v];
-  };
-  mix(r.blend);
-  mix(r.startBlend);
-  for (const DenoiseResult::Blend& b : r.runBlends) {
-    INFO("run blend: Taubin " << b.presmoothingSteps << " + " << b.passes << " passes at h_r " << b.rangeBandwidth << " (" << b.weight << ")");
-    REQUIRE_FALSE(b.taubinOnly);
-    REQUIRE(b.weight > 0);
-    REQUIRE(std::find(runs.begin(), runs.end(), std::make_pair(b.presmoothingSteps, b.rangeBandwidth)) == runs.end());
-    runs.emplace_back(b.presmoothingSteps, b.rangeBandwidth);
-    mix(b);
-  }
-  REQUIRE(m.positions() == x);
-
-  // Threads change nothing; without blendRuns nothing more joins.
-  Mesh one = noisy;
-  o.threads = 1;
-  const DenoiseResult r1 = denoise(one, o);
-  REQUIRE(r1.runBlends.size() == r.runBlends.size());
-  REQUIRE(one.positions() == m.positions());
-  Mesh two = noisy;
-  o.blendRuns = false;
-  REQUIRE(denoise(two, o).runBlends.empty());
-}
-
 // A tie the probes leave unsettled goes to the contender whose normals turn least (tieByNormals):
 // the contenders the leader by mean rank does not lead by tieStandardErrors include the leader
 // itself, so the result turns no more than the leader's. Held unsettled here by a lead no probe can

@@ -91,9 +91,6 @@ struct DenoiseOptions {
   // blend so far. blendSpread scales D in that weight (1: the risk's own optimum; larger blends
   // across larger gaps); 0: never. Within [0, 1000].
   double blendSpread = 1;
-  // Then the best candidate with passes of every run (start and range bandwidth) not yet in the
-  // mix, in the order of their ranks, each against the blend so far (docs/denoising.md#the-blend-of-least-risk).
-  bool blendRuns = false;
   int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk
   int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
@@ -234,7 +231,6 @@ struct DenoiseResult {
     double rangeBandwidth = 0;
     int passes = 0;
   } blend, startBlend;
-  std::vector<Blend> runBlends;  // blendRuns: the further runs' best, in the order they joined
   double estimatedError = 0;    // risk estimate of the result: RMS error across the surface, in AEL;
                                 // 0 when below a tenth of the noise level (not resolved)
   size_t neighborhoodBytes = 0;
