@@ -174,7 +174,7 @@ struct WhatIf {
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
-      tieProbes, minPieceVertices, noiseRegionVertices;
+      tieProbes, minPieceVertices;
   std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
       spatialOrder;
   bool trace = false, trueNoise = false;
@@ -188,7 +188,6 @@ struct WhatIf {
     if (levelLean) o.levelLean = *levelLean;
     if (blendSpread) o.blendSpread = *blendSpread;
     if (minPieceVertices) o.minPieceVertices = *minPieceVertices;
-    if (noiseRegionVertices) o.noiseRegionVertices = *noiseRegionVertices;
     if (gradientRiskWeight) o.gradientRiskWeight = *gradientRiskWeight;
     if (impulseSpectrumKurtosis) o.impulseSpectrumKurtosis = *impulseSpectrumKurtosis;
     if (highFrequencyLevel) o.highFrequencyLevel = *highFrequencyLevel;
@@ -624,7 +623,6 @@ int main(int argc, char** argv) {
       else if (a == "--blend-spread") whatIf.blendSpread = std::stod(value());
       else if (a == "--gradient-risk-weight") whatIf.gradientRiskWeight = std::stod(value());
       else if (a == "--min-piece") whatIf.minPieceVertices = std::stoi(value());
-      else if (a == "--noise-regions") whatIf.noiseRegionVertices = std::stoi(value());
       else if (a == "--impulse-spectrum-kurtosis") whatIf.impulseSpectrumKurtosis = std::stod(value());
       else if (a == "--high-frequency-level") whatIf.highFrequencyLevel = value() != "off";
       else if (a == "--impulse-shrink") whatIf.impulseShrink = std::stod(value());
@@ -789,7 +787,7 @@ int main(int argc, char** argv) {
           std::lock_guard lock(log);
           ParallelOptions one;
           one.threads = 1;
-          const HighFrequencyNoise high = highFrequencyNoise(c.noisy, one, whatIf.noiseRegionVertices.value_or(0));
+          const HighFrequencyNoise high = highFrequencyNoise(c.noisy, one);
           std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | high %.3f | kurtosis %.2f | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f)\n",
                       c.mesh.c_str(), c.noise.c_str(), trueNoiseLevel(c), estimateNoise(c.noisy).level, high.level,
                       high.kurtosis, a, b, k1, d, k2, e, k3);

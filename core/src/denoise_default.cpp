@@ -516,7 +516,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   if (rankWithHigh || (o.impulseShrink > 0 && o.impulseSpectrumKurtosis > 0)) {
     ParallelOptions par;
     par.threads = o.threads;
-    const HighFrequencyNoise high = highFrequencyNoise(mesh, par, o.noiseRegionVertices);
+    const HighFrequencyNoise high = highFrequencyNoise(mesh, par);
     if (rankWithHigh) highLevel = high.level;
     result.spectrumKurtosis = high.kurtosis;
   }

@@ -1,7 +1,6 @@
 // estimateNoise (noise.hpp; docs/denoising.md#noise-estimate).
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <random>
 #include <type_traits>
 #include <vector>
@@ -130,7 +129,7 @@ NoiseEstimate estimateNoise(const Mesh& mesh, int maxSamples) {
   return out;
 }
 
-HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& parallel, int regionVertices) {
+HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& parallel) {
   // docs/denoising.md#noise-estimate. Two applications of the uniform Laplacian L (each vertex less
   // the mean of its neighbours) take a smooth surface, curvature included, to about zero and keep
   // the noise's top frequencies; along the normals n of a smoothed copy, (L²y)·n over the vertices
@@ -214,62 +213,7 @@ HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& p
   }
   if (!(expected > 0) || !(measured > 0)) return {};
   const double meanSquare = measured / count;
-  const double kurtosis = fourth / count / (meanSquare * meanSquare);
-  double variance = measured / expected;
-  if (regionVertices > 0 && count >= 2 * regionVertices) {
-    // Cubes whose side s holds about regionVertices of the surface's vertices: a vertex covers
-    // A / nv of the area, a cube cut by a flat piece of surface about s² of it.
-    double area = 0;
-    for (double a : faceAreas(mesh)) area += a;
-    const double side = std::sqrt(regionVertices * area / nv);
-    Vec3 low = mesh.position(0);
-    for (int v = 1; v < nv; ++v) low = low.cwiseMin(mesh.position(v));
-    struct Entry {
-      std::int64_t cell;
-      int v;
-    };
-    std::vector<Entry> entries;
-    entries.reserve(count);
-    for (int v = 0; v < nv; ++v) {
-      if (out[v] || normal[v].squaredNorm() == 0) continue;
-      const Vec3 q = (mesh.position(v) - low) / side;
-      const auto i = static_cast<std::int64_t>(q.x()), j = static_cast<std::int64_t>(q.y()),
-                 k = static_cast<std::int64_t>(q.z());
-      entries.push_back({(i * 2097152 + j) * 2097152 + k, v});
-    }
-    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-      return a.cell != b.cell ? a.cell < b.cell : a.v < b.v;
-    });
-    struct Region {
-      double ratio, weight;
-    };
-    std::vector<Region> regions;
-    double total = 0;
-    for (size_t b = 0, e; b < entries.size(); b = e) {
-      double m = 0, x = 0;
-      for (e = b; e < entries.size() && entries[e].cell == entries[b].cell; ++e) {
-        const int v = entries[e].v;
-        const double d = high[v].dot(normal[v]);
-        m += d * d;
-        x += response[v] / kProbes;
-      }
-      if (4 * static_cast<int>(e - b) < regionVertices || !(x > 0)) continue;
-      regions.push_back({m / x, x});
-      total += x;
-    }
-    if (regions.size() >= 3) {
-      std::sort(regions.begin(), regions.end(), [](const Region& a, const Region& b) { return a.ratio < b.ratio; });
-      double below = 0;
-      for (const Region& r : regions) {
-        below += r.weight;
-        if (2 * below >= total) {
-          variance = r.ratio;
-          break;
-        }
-      }
-    }
-  }
-  return {std::sqrt(variance) / averageEdgeLength(mesh), kurtosis};
+  return {std::sqrt(measured / expected) / averageEdgeLength(mesh), fourth / count / (meanSquare * meanSquare)};
 }
 
 double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel) {

@@ -162,7 +162,6 @@ struct DenoiseOptions {
   // (docs/denoising.md#the-noise-level). false, or where no vertex is three rings from a crease or a
   // boundary: the level refined from the candidates, as above.
   bool highFrequencyLevel = true;
-  int noiseRegionVertices = 0;  // that level's regions (highFrequencyNoise's regionVertices; 0: one mean)
   double levelLean = 1.1;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;

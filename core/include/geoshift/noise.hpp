@@ -70,12 +70,7 @@ struct HighFrequencyNoise {
   // (docs/denoising.md#impulsive-noise).
   double kurtosis = 0;
 };
-// regionVertices > 0: instead of one mean over all those vertices, the median over regions of about
-// that many of them (cubes of the bounding box, sized by the mean area a vertex covers; regions with
-// fewer than a quarter of it left out), each region's own ratio weighted by its response, so that
-// detail confined to part of the surface does not read as noise everywhere
-// (docs/denoising.md#the-level-from-the-top-of-the-spectrum). The kurtosis stays over all of them.
-HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& parallel = {}, int regionVertices = 0);
+HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& parallel = {});
 double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel = {});  // its level
 
 // Its parts: the sampled vertices (interior, not isolated, evenly spread over the index range), and
