@@ -175,7 +175,7 @@ struct WhatIf {
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes, minPieceVertices;
-  std::optional<bool> linearLevelBound, refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
+  std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
       spatialOrder;
   bool trace = false, trueNoise = false;
   std::vector<double> range;
@@ -188,7 +188,6 @@ struct WhatIf {
     if (levelLean) o.levelLean = *levelLean;
     if (blendSpread) o.blendSpread = *blendSpread;
     if (minPieceVertices) o.minPieceVertices = *minPieceVertices;
-    if (linearLevelBound) o.linearLevelBound = *linearLevelBound;
     if (gradientRiskWeight) o.gradientRiskWeight = *gradientRiskWeight;
     if (impulseSpectrumKurtosis) o.impulseSpectrumKurtosis = *impulseSpectrumKurtosis;
     if (highFrequencyLevel) o.highFrequencyLevel = *highFrequencyLevel;
@@ -624,7 +623,6 @@ int main(int argc, char** argv) {
       else if (a == "--blend-spread") whatIf.blendSpread = std::stod(value());
       else if (a == "--gradient-risk-weight") whatIf.gradientRiskWeight = std::stod(value());
       else if (a == "--min-piece") whatIf.minPieceVertices = std::stoi(value());
-      else if (a == "--linear-level-bound") whatIf.linearLevelBound = value() == "on";
       else if (a == "--impulse-spectrum-kurtosis") whatIf.impulseSpectrumKurtosis = std::stod(value());
       else if (a == "--high-frequency-level") whatIf.highFrequencyLevel = value() != "off";
       else if (a == "--impulse-shrink") whatIf.impulseShrink = std::stod(value());

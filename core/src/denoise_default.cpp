@@ -651,14 +651,6 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       // The level from the top of the spectrum, ranked with the lean (a level a little high smooths
       // the normals a little more, which pays).
       finalSigma = highLevel * ael;
-      if (o.linearLevelBound) {
-        double linearImplied = finalSigma * finalSigma;
-        for (const auto& c : scored) {
-          const double w = c.passes == 0 ? risk.linearImpliedVariance(c.sums) : 0.0;
-          if (w > 0) linearImplied = std::min(linearImplied, w);
-        }
-        finalSigma = std::sqrt(linearImplied);
-      }
       rank.sigma = o.levelLean * finalSigma;
     } else {
       double implied = raceSigma * raceSigma, linearImplied = implied;

@@ -163,9 +163,6 @@ struct DenoiseOptions {
   // boundary: the level refined from the candidates, as above.
   bool highFrequencyLevel = true;
   double levelLean = 1.1;
-  // That level no higher than the least the linear candidates (no passes) bound it by: their fit over
-  // m − 2 tr J + tr JᵀJ is the noise variance plus the detail they remove (docs/denoising.md#the-noise-level).
-  bool linearLevelBound = false;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the
