@@ -173,7 +173,7 @@ struct WhatIf {
   std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
-  std::optional<int> maxPasses, vertexIterations, patience, leaderPatience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
+  std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes, minPieceVertices;
   std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
       spatialOrder;
@@ -201,7 +201,6 @@ struct WhatIf {
     if (maxPasses) o.maxPasses = *maxPasses;
     if (vertexIterations) o.vertexIterations = *vertexIterations;
     if (patience) o.patience = *patience;
-    if (leaderPatience) o.leaderPatience = *leaderPatience;
     if (fixedPasses) o.fixedPasses = *fixedPasses;
     if (riskNormalSmoothing) o.riskNormalSmoothing = *riskNormalSmoothing;
     if (!range.empty()) o.rangeBandwidths = range;
@@ -645,7 +644,6 @@ int main(int argc, char** argv) {
       else if (a == "--radius") whatIf.radius = std::stod(value());
       else if (a == "--hs") whatIf.spatialBandwidth = std::stod(value());
       else if (a == "--patience") whatIf.patience = std::stoi(value());
-      else if (a == "--leader-patience") whatIf.leaderPatience = std::stoi(value());
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());

@@ -259,9 +259,6 @@ class CandidateRace {
   void run(Passes& passes, const Progress& progress) {
     for (int done = 0;;) {
       bool any = false;
-      int going = 0;
-      for (const Run& r : runs_) going += r.active ? 1 : 0;
-      const int patience = going == 1 && o_.leaderPatience > 0 ? o_.leaderPatience : o_.patience;
       for (Run& run : runs_) {
         if (!run.active) continue;
         // Done over done plus the most the runs still going can take: it only grows, and it
@@ -275,7 +272,7 @@ class CandidateRace {
         ++run.t;
         ++done;
         scoreRun(run);
-        if (run.t - run.lastBest >= patience || run.t >= o_.maxPasses) run.active = false;
+        if (run.t - run.lastBest >= o_.patience || run.t >= o_.maxPasses) run.active = false;
         any = any || run.active;
       }
       if (!any) break;

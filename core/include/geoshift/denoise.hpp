@@ -93,7 +93,6 @@ struct DenoiseOptions {
   double blendSpread = 1;
   int maxPasses = 40;
   int patience = 4;         // stop a candidate after this many passes without a lower risk
-  int leaderPatience = 0;   // scratch: the patience of a run once it is the only one still going (0: patience)
   int fixedPasses = 0;      // > 0: no risk estimate, presmoothing[0] steps and exactly this many passes
   int vertexIterations = 10;
   std::uint64_t seed = 1;   // of the risk estimate's random probe
