@@ -15,7 +15,9 @@ namespace fs = std::filesystem;
 
 namespace geoshift::eval {
 
-const char* setName(Set s) { return s == Set::Tuning ? "tuning" : "validation"; }
+const char* setName(Set s) {
+  return s == Set::Tuning ? "tuning" : s == Set::Validation ? "validation" : "broad";
+}
 
 std::uint64_t fnv1a(const std::string& s) {
   std::uint64_t h = 14695981039346656037ull;
@@ -38,7 +40,7 @@ std::vector<MeshEntry> cleanMeshes(const fs::path& data) {
   std::vector<MeshEntry> out;
   auto procedural = [&](std::string name, std::string family, std::string category, bool seen,
                         std::function<TriangleSoup()> make) {
-    out.push_back({name + " (procedural)", family, category, seen, [make] { return buildMesh(make()).mesh; }});
+    out.push_back({name + " (procedural)", family, category, seen, false, [make] { return buildMesh(make()).mesh; }});
   };
   auto file = [&](std::string name, std::string family, std::string category, bool seen, std::string rel,
                   bool terrain = false) {
@@ -47,7 +49,7 @@ std::vector<MeshEntry> cleanMeshes(const fs::path& data) {
       std::cerr << "denoise_eval: left out " << name << ": " << p.string() << " not found (../shared/data absent)\n";
       return;
     }
-    out.push_back({name, family, category, seen, [p, terrain] { return terrain ? fromTerrain(p) : fromFile(p); }});
+    out.push_back({name, family, category, seen, false, [p, terrain] { return terrain ? fromTerrain(p) : fromFile(p); }});
   };
   const std::string g = "guided_denoising_bldeng/models/", o = "odedstein_meshes/";
   // Seen: the scoreboard that chose the defaults until 2026-11-26 (its 13 clean meshes and 11 pairs).
@@ -111,6 +113,77 @@ std::vector<MeshEntry> cleanMeshes(const fs::path& data) {
   return out;
 }
 
+std::vector<MeshEntry> broadMeshes(const fs::path& dir) {
+  std::vector<MeshEntry> out;
+  if (!fs::is_directory(dir)) {
+    std::cerr << "denoise_eval: the broad set's meshes are not in " << dir.string()
+              << ": fetch them with scripts/eval-data.sh (or give --broad-data DIR)\n";
+    return out;
+  }
+  // The rule of docs/denoising.md ("The broad tuning set"): file stem, family, category. Written
+  // down from the files' names and sizes before any result on them was looked at.
+  struct Listed {
+    const char *stem, *family, *category;
+  };
+  static const Listed listed[] = {
+      {"ALSTOM_TEST4", "alstom test4", "CAD"},
+      {"anchor_dense", "anchor", "CAD"},
+      {"couplingdown", "couplingdown", "CAD"},
+      {"mech-holes-shark", "mech holes shark", "CAD"},
+      {"rotor_small", "rotor small", "CAD"},
+      {"turbine", "turbine", "CAD"},
+      {"blade", "blade", "thin sheet"},
+      {"boeing", "boeing", "thin sheet"},
+      {"bear", "bear", "animal"},
+      {"bear_bis", "bear", "animal"},
+      {"bull", "bull", "animal"},
+      {"camel", "camel", "animal"},
+      {"cow", "cow", "animal"},
+      {"dino", "dino", "animal"},
+      {"diplodocus", "diplodocus", "animal"},
+      {"elephant", "elephant", "animal"},
+      {"elephant-with-holes", "elephant", "animal"},
+      {"refined_elephant", "elephant", "animal"},
+      {"hand", "hand", "animal"},
+      {"homer", "homer", "animal"},
+      {"man", "man", "animal"},
+      {"triceratops", "triceratops", "animal"},
+      {"bones", "bones", "sculpture"},
+      {"femur", "femur", "sculpture"},
+      {"head", "head", "sculpture"},
+      {"mannequin-devil", "mannequin devil", "sculpture"},
+      {"blobby", "blobby", "smooth"},
+      {"blobby_3cc", "blobby", "smooth"},
+      {"cheese", "cheese", "smooth"},
+      {"elk", "elk", "smooth"},
+      {"ellipe0.003", "ellipe", "smooth"},
+      {"handle", "handle", "smooth"},
+      {"retinal", "retinal", "smooth"},
+      {"knot", "knot", "tube"},
+      {"knot1", "knot1", "tube"},
+      {"knot2", "knot2", "tube"},
+      {"cylinder", "cylinder", "open or terrain"},
+      {"cylinder_locally_refined", "cylinder", "open or terrain"},
+      {"holes", "holes", "open or terrain"},
+      {"horizons", "horizons", "open or terrain"},
+      {"mask_cone", "mask cone", "open or terrain"},
+      {"polygon_mesh", "polygon mesh", "open or terrain"},
+      {"poly2x^2+y^2-0.062500", "poly2x2y2", "open or terrain"},
+      {"three_peaks", "three peaks", "open or terrain"},
+  };
+  for (const Listed& l : listed) {
+    const fs::path p = dir / (std::string(l.stem) + ".off");
+    if (!fs::exists(p)) {
+      std::cerr << "denoise_eval: left out " << l.stem << " (CGAL): " << p.string() << " not found\n";
+      continue;
+    }
+    MeshEntry m{std::string(l.stem) + " (CGAL)", std::string("cgal ") + l.family, l.category, false, true,
+                [p] { return fromFile(p); }};
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
 std::vector<std::pair<std::string, Set>> splitFamilies(const std::vector<MeshEntry>& meshes) {
   std::map<std::string, std::vector<std::string>> newByCategory;
   std::vector<std::pair<std::string, Set>> out;
@@ -119,6 +192,10 @@ std::vector<std::pair<std::string, Set>> splitFamilies(const std::vector<MeshEnt
   };
   for (const MeshEntry& m : meshes) {
     if (known(m.family)) continue;
+    if (m.broad) {
+      out.push_back({m.family, Set::Broad});
+      continue;
+    }
     if (m.seen) {
       out.push_back({m.family, Set::Tuning});
       continue;

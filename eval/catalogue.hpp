@@ -13,7 +13,8 @@
 
 namespace geoshift::eval {
 
-enum class Set { Tuning, Validation };
+// Broad: tuning cases only, reported apart (docs/denoising.md#the-evaluation, "The broad tuning set").
+enum class Set { Tuning, Validation, Broad };
 const char* setName(Set s);
 
 // A clean mesh. Meshes of one family (the same object at two resolutions, with and without holes)
@@ -23,6 +24,7 @@ struct MeshEntry {
   std::string family;    // the split's key
   std::string category;  // what kind of surface (the split is balanced within each)
   bool seen = false;     // played a part in choosing earlier defaults: tuning set, whatever the hash
+  bool broad = false;    // of the broad tuning set: never validation
   std::function<Mesh()> load;  // the clean mesh, any scale
 };
 
@@ -46,8 +48,13 @@ std::uint64_t fnv1a(const std::string& s);
 // Every clean mesh of the catalogue; files missing under `data` are left out with a note on stderr.
 std::vector<MeshEntry> cleanMeshes(const std::filesystem::path& data);
 
+// The broad tuning set's meshes, read from `dir` (CGAL's demo meshes as scripts/eval-data.sh
+// unpacks them); none when `dir` does not exist (a note on stderr says how to fetch them), and a
+// note for each listed file that is missing.
+std::vector<MeshEntry> broadMeshes(const std::filesystem::path& dir);
+
 // The split, decided by names alone before any result was seen: families already used to choose
-// earlier defaults go to tuning; within each category the other families, ordered by fnv1a of the
+// earlier defaults go to tuning, the broad set's to broad; within each category the other families, ordered by fnv1a of the
 // family name, alternate validation, tuning, validation, ...
 std::vector<std::pair<std::string, Set>> splitFamilies(const std::vector<MeshEntry>& meshes);
 

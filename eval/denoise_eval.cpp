@@ -425,7 +425,8 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
   std::vector<const Result*> rows;
   for (const Result& r : results)
     if (r.c->set == set) rows.push_back(&r);
-  s << "## " << (set == Set::Tuning ? "Tuning set" : "Validation set") << " (" << rows.size() << " cases)\n\n";
+  s << "## " << (set == Set::Tuning ? "Tuning set" : set == Set::Validation ? "Validation set" : "Broad tuning set") << " ("
+    << rows.size() << " cases)\n\n";
   if (rows.empty()) return s.str();
   s << "RMS ×10² / mean normal error (°); oracles tuned per case on the truth; geoshift with its defaults, probe seed "
     << seeds.front() << ". ✓: both numbers at or below both oracles; ratio: the worse of ours / the better oracle.\n\n"
@@ -540,7 +541,8 @@ int usage(const char* error) {
   if (error) std::cerr << "denoise_eval: " << error << "\n";
   std::cerr
       << "usage: denoise_eval [options]\n"
-         "  --set tuning|validation|all   which cases (default all); choose defaults on tuning alone\n"
+         "  --set tuning|validation|broad|all   which cases (default all: tuning and validation); choose defaults on\n"
+         "                     tuning (and broad, more tuning cases: CGAL's demo meshes, scripts/eval-data.sh) alone\n"
          "  --mesh SUBSTRING   only cases whose mesh name contains SUBSTRING (case-insensitive)\n"
          "  --pairs            only the ground-truth pairs\n"
          "  --quick            one pair and two small procedural meshes, as a smoke test\n"
@@ -572,7 +574,8 @@ int usage(const char* error) {
          "  --compare BEFORE AFTER   no evaluation: compare two --results files case by case (verdicts that\n"
          "                     changed, ratios, and a signed-rank test of the changes in RMS and normal error,\n"
          "                     over the cases and over the meshes)\n"
-         "  --data DIR         the shared data folder (default ../shared/data of the repository)\n";
+         "  --data DIR         the shared data folder (default ../shared/data of the repository)\n"
+         "  --broad-data DIR   the broad set's meshes (default build/eval-data/cgal-demo/meshes of the repository)\n";
   return error ? 2 : 0;
 }
 
@@ -589,6 +592,8 @@ int main(int argc, char** argv) {
   OracleCache cache{"build/eval-cache"};
   const char* env = std::getenv("GEOSHIFT_SHARED_DATA");
   fs::path data = env && *env ? env : GEOSHIFT_SHARED_DATA;
+  const char* broadEnv = std::getenv("GEOSHIFT_BROAD_DATA");
+  fs::path broadData = broadEnv && *broadEnv ? broadEnv : GEOSHIFT_BROAD_DATA;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -668,13 +673,15 @@ int main(int argc, char** argv) {
         compare.push_back(value());
       }
       else if (a == "--data") data = value();
+      else if (a == "--broad-data") broadData = value();
       else if (a == "-h" || a == "--help") return usage(nullptr);
       else return usage(("unknown argument '" + a + "'").c_str());
     } catch (const std::exception& e) {
       return usage(e.what());
     }
   }
-  if (setFilter != "all" && setFilter != "tuning" && setFilter != "validation") return usage("--set takes tuning, validation or all");
+  if (setFilter != "all" && setFilter != "tuning" && setFilter != "validation" && setFilter != "broad")
+    return usage("--set takes tuning, validation, broad or all");
   if (!compare.empty()) {
     try {
       std::vector<CaseFigures> runs[2];
@@ -693,6 +700,9 @@ int main(int argc, char** argv) {
 
   // The catalogue and its split.
   std::vector<MeshEntry> meshes = cleanMeshes(data);
+  // The broad set only where it is asked for: --set all stays the tuning and validation sets.
+  if (setFilter == "broad" || splitOnly)
+    for (MeshEntry& m : broadMeshes(broadData)) meshes.push_back(std::move(m));
   const auto split = splitFamilies(meshes);
   auto setOf = [&](const std::string& family) {
     for (const auto& [f, s] : split)
@@ -700,14 +710,14 @@ int main(int argc, char** argv) {
     return Set::Tuning;
   };
   if (splitOnly) {
-    for (Set set : {Set::Tuning, Set::Validation}) {
+    for (Set set : {Set::Tuning, Set::Validation, Set::Broad}) {
       std::cout << setName(set) << ":\n";
       for (const MeshEntry& m : meshes)
         if (setOf(m.family) == set) std::cout << "  " << m.name << " [" << m.family << "; " << m.category << (m.seen ? "; seen" : "") << "]\n";
     }
     return 0;
   }
-  auto wantedSet = [&](Set s) { return setFilter == "all" || setFilter == setName(s); };
+  auto wantedSet = [&](Set s) { return (setFilter == "all" && s != Set::Broad) || setFilter == setName(s); };
   auto wanted = [&](const std::string& name) { return filter.empty() || lower(name).find(filter) != std::string::npos; };
 
   // Tasks: one per (clean mesh, noise) and one per pair; each builds its case when it runs.
@@ -842,7 +852,7 @@ int main(int argc, char** argv) {
     for (size_t k = 0; k < noiseSeeds.size(); ++k) md << (k ? ", " : " ") << noiseSeeds[k];
     md << " (the scoreboard's: 1; the pairs keep their own noise, counted with noise seed 1).\n\n";
   }
-  for (Set set : {Set::Validation, Set::Tuning})
+  for (Set set : {Set::Validation, Set::Tuning, Set::Broad})
     if (wantedSet(set)) md << report(set, results, seeds, paper);
   std::cout << md.str();
   if (!markdownPath.empty()) {
