@@ -170,10 +170,10 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
+  std::optional<double> spectrumVeto, strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
-  std::optional<int> maxPasses, vertexIterations, patience, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
+  std::optional<int> maxPasses, vertexIterations, patience, highMinSamples, highFallback, spectrumDecides, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes, minPieceVertices;
   std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
       spatialOrder;
@@ -201,6 +201,10 @@ struct WhatIf {
     if (maxPasses) o.maxPasses = *maxPasses;
     if (vertexIterations) o.vertexIterations = *vertexIterations;
     if (patience) o.patience = *patience;
+    if (highMinSamples) o.highFrequencyMinSamples = *highMinSamples;
+    if (highFallback) o.highFallback = *highFallback;
+    if (spectrumVeto) o.spectrumVeto = *spectrumVeto;
+    if (spectrumDecides) o.spectrumDecides = *spectrumDecides != 0;
     if (fixedPasses) o.fixedPasses = *fixedPasses;
     if (riskNormalSmoothing) o.riskNormalSmoothing = *riskNormalSmoothing;
     if (!range.empty()) o.rangeBandwidths = range;
@@ -234,6 +238,7 @@ double trueNoiseLevel(const Case& c) {
   return std::sqrt(sum / std::max(1, count)) / averageEdgeLength(c.noisy);
 }
 
+std::string fixed(double x, int digits);
 std::string fixed3(double x) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.3f", x);
@@ -302,7 +307,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
     note
          << (o.fixedPasses > 0 ? " (fixed)" : "")
          << blended(", blended ", r.blend) << blended(", then ", r.startBlend)
-         << (r.impulseGarrote ? ", impulse garrote" : "")
+         << (r.impulseGarrote ? ", impulse garrote (kurtosis " + fixed(r.displacementKurtosis, 1) + ", spectrum " + fixed(r.spectrumKurtosis, 1) + ")" : "")
          << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe") +
                                    (r.tieByNormals ? ", by normals" : "")
                              : "")
@@ -649,6 +654,10 @@ int main(int argc, char** argv) {
       else if (a == "--radius") whatIf.radius = std::stod(value());
       else if (a == "--hs") whatIf.spatialBandwidth = std::stod(value());
       else if (a == "--patience") whatIf.patience = std::stoi(value());
+      else if (a == "--high-min-samples") whatIf.highMinSamples = std::stoi(value());
+      else if (a == "--high-fallback") whatIf.highFallback = std::stoi(value());
+      else if (a == "--spectrum-veto") whatIf.spectrumVeto = std::stod(value());
+      else if (a == "--spectrum-decides") whatIf.spectrumDecides = value() != "off" ? 1 : 0;
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());
@@ -798,9 +807,9 @@ int main(int argc, char** argv) {
           ParallelOptions one;
           one.threads = 1;
           const HighFrequencyNoise high = highFrequencyNoise(c.noisy, one);
-          std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | high %.3f | kurtosis %.2f | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f)\n",
+          std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | high %.3f | kurtosis %.2f | samples %d of %d | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f)\n",
                       c.mesh.c_str(), c.noise.c_str(), trueNoiseLevel(c), estimateNoise(c.noisy).level, high.level,
-                      high.kurtosis, a, b, k1, d, k2, e, k3);
+                      high.kurtosis, high.samples, c.noisy.vertexCount(), a, b, k1, d, k2, e, k3);
           continue;
         }
         Result& r = results[t];

@@ -511,14 +511,23 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   // The level the candidates are finally ranked with (docs/denoising.md#the-noise-level): read
   // from the input's highest frequencies before the passes move it. 0: not used, or no vertex far
   // enough from a crease or a boundary.
-  double highLevel = 0;
+  double highLevel = 0, highReading = 0;
+  int highSamples = 0;
   const bool rankWithHigh = level == 0 && o.refineNoise && o.highFrequencyLevel;
   if (rankWithHigh || (o.impulseShrink > 0 && o.impulseSpectrumKurtosis > 0)) {
     ParallelOptions par;
     par.threads = o.threads;
     const HighFrequencyNoise high = highFrequencyNoise(mesh, par);
-    if (rankWithHigh) highLevel = high.level;
-    result.spectrumKurtosis = high.kurtosis;
+    // Too few vertices far from every crease and boundary, and the reading is one of a handful of
+    // samples: neither its level nor its kurtosis is then used (docs/denoising.md#the-noise-level).
+    highReading = high.level;
+    highSamples = high.samples;
+    if (high.samples >= o.highFrequencyMinSamples) {
+      if (rankWithHigh) highLevel = high.level;
+      result.spectrumKurtosis = high.kurtosis;
+    } else if (rankWithHigh && o.highFallback == 1) {
+      highLevel = -1;  // the race's upper level, below
+    }
   }
   if (level == 0) {
     estimate = estimateNoise(mesh);
@@ -647,7 +656,10 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   double finalSigma = raceSigma;
   rank.sigma = finalSigma;
   if (o.refineNoise && result.noiseEstimated) {
-    if (highLevel > 0) {
+    if (highLevel < 0) {
+      finalSigma = raceSigma;
+      rank.sigma = finalSigma;
+    } else if (highLevel > 0) {
       // The level from the top of the spectrum, ranked with the lean (a level a little high smooths
       // the normals a little more, which pays).
       finalSigma = highLevel * ael;
@@ -664,6 +676,11 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       if (linearImplied < ratio * ratio * implied) implied = linearImplied;
       finalSigma = std::clamp(std::sqrt(implied), 0.5 * lowSigma, raceSigma);
       rank.sigma = finalSigma;
+      if (o.highFallback == 2 && rankWithHigh && highReading > 0) {
+        const double w = highSamples / (highSamples + 5.0);
+        finalSigma = std::exp(w * std::log(highReading * ael) + (1 - w) * std::log(finalSigma));
+        rank.sigma = std::pow(o.levelLean, w) * finalSigma;
+      }
     }
     for (size_t i = 0; i < scored.size(); ++i)
       if (rank(scored[i].sums) < rank(scored[chosen].sums)) chosen = i;
@@ -758,7 +775,14 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());
   result.displacementKurtosis = kurtosis(displacements);
   const bool spectrumSaysImpulsive = o.impulseSpectrumKurtosis > 0 && result.spectrumKurtosis > o.impulseSpectrumKurtosis;
-  if (o.impulseShrink > 0 && (result.displacementKurtosis > o.impulseKurtosis || spectrumSaysImpulsive)) {
+  const bool winnerSaysImpulsive = result.displacementKurtosis > o.impulseKurtosis;
+  const bool spectrumRead = result.spectrumKurtosis > 0;
+  const bool spectrumVetoes = o.spectrumVeto > 0 && spectrumRead && highSamples > 0 &&
+                              result.spectrumKurtosis + 2 * std::sqrt(24.0 / highSamples) < o.spectrumVeto;
+  const bool impulsive = o.spectrumDecides && spectrumRead && o.impulseSpectrumKurtosis > 0
+                             ? spectrumSaysImpulsive
+                             : (winnerSaysImpulsive && !spectrumVetoes) || spectrumSaysImpulsive;
+  if (o.impulseShrink > 0 && impulsive) {
     correctOutliers(mesh, input, x, risk.normals(), o.impulseShrink * robustSpread(displacements));
     result.impulseGarrote = true;
   }

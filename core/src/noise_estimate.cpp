@@ -213,7 +213,7 @@ HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& p
   }
   if (!(expected > 0) || !(measured > 0)) return {};
   const double meanSquare = measured / count;
-  return {std::sqrt(measured / expected) / averageEdgeLength(mesh), fourth / count / (meanSquare * meanSquare)};
+  return {std::sqrt(measured / expected) / averageEdgeLength(mesh), fourth / count / (meanSquare * meanSquare), count};
 }
 
 double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel) {

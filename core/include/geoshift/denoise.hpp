@@ -163,6 +163,10 @@ struct DenoiseOptions {
   // boundary: the level refined from the candidates, as above.
   bool highFrequencyLevel = true;
   double levelLean = 1.1;
+  bool spectrumDecides = false;  // scratch: where the spectrum was read, its kurtosis alone triggers the correction
+  int highFrequencyMinSamples = 0;
+  int highFallback = 0;
+  double spectrumVeto = 0;  // scratch: the winner's trigger is vetoed where the spectrum reads below this by two standard errors  // scratch: 0 the refined level, 1 the race's upper level  // scratch: fewer vertices read than this, and the reading is not used
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the

@@ -69,6 +69,7 @@ struct HighFrequencyNoise {
   // impulsive noise, a few vertices moved far (6.4–45); 0 where the level is
   // (docs/denoising.md#impulsive-noise).
   double kurtosis = 0;
+  int samples = 0;  // the vertices read: those three rings from any crease, boundary or isolated vertex
 };
 HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& parallel = {});
 double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel = {});  // its level
