@@ -173,7 +173,7 @@ struct WhatIf {
   std::optional<double> spectrumVeto, strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
-  std::optional<int> maxPasses, vertexIterations, patience, highMinSamples, highFallback, spectrumDecides, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
+  std::optional<int> maxPasses, vertexIterations, patience, highMinSamples, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes, minPieceVertices;
   std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
       spatialOrder;
@@ -202,9 +202,7 @@ struct WhatIf {
     if (vertexIterations) o.vertexIterations = *vertexIterations;
     if (patience) o.patience = *patience;
     if (highMinSamples) o.highFrequencyMinSamples = *highMinSamples;
-    if (highFallback) o.highFallback = *highFallback;
-    if (spectrumVeto) o.spectrumVeto = *spectrumVeto;
-    if (spectrumDecides) o.spectrumDecides = *spectrumDecides != 0;
+    if (spectrumVeto) o.impulseSpectrumVeto = *spectrumVeto;
     if (fixedPasses) o.fixedPasses = *fixedPasses;
     if (riskNormalSmoothing) o.riskNormalSmoothing = *riskNormalSmoothing;
     if (!range.empty()) o.rangeBandwidths = range;
@@ -568,7 +566,8 @@ int usage(const char* error) {
          "  --tie-standard-errors, --tie-normals on|off, --input-candidate on|off, --spatial-order on|off,\n"
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
-         "  --gradient-risk-weight, --impulse-spectrum-kurtosis, --min-piece (minPieceVertices), --blend-spread\n"
+         "  --gradient-risk-weight, --impulse-spectrum-kurtosis, --min-piece (minPieceVertices), --blend-spread,\n"
+         "  --high-min-samples (highFrequencyMinSamples), --impulse-spectrum-veto\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
@@ -655,9 +654,7 @@ int main(int argc, char** argv) {
       else if (a == "--hs") whatIf.spatialBandwidth = std::stod(value());
       else if (a == "--patience") whatIf.patience = std::stoi(value());
       else if (a == "--high-min-samples") whatIf.highMinSamples = std::stoi(value());
-      else if (a == "--high-fallback") whatIf.highFallback = std::stoi(value());
-      else if (a == "--spectrum-veto") whatIf.spectrumVeto = std::stod(value());
-      else if (a == "--spectrum-decides") whatIf.spectrumDecides = value() != "off" ? 1 : 0;
+      else if (a == "--impulse-spectrum-veto") whatIf.spectrumVeto = std::stod(value());
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());

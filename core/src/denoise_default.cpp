@@ -51,6 +51,10 @@ void validate(const DenoiseOptions& o) {
     bad("Taubin-only margin must be >= 0 (got " + std::to_string(o.taubinOnlyMargin) + ")");
   if (o.maxPasses < 1 || o.maxPasses > 10000) bad("maximum passes must be in [1, 10000] (got " + std::to_string(o.maxPasses) + ")");
   if (o.patience < 1) bad("patience must be at least 1 (got " + std::to_string(o.patience) + ")");
+  if (o.highFrequencyMinSamples < 0)
+    bad("high-frequency minimum samples must be >= 0 (got " + std::to_string(o.highFrequencyMinSamples) + ")");
+  if (!(o.impulseSpectrumVeto >= 0) || !std::isfinite(o.impulseSpectrumVeto))
+    bad("impulse spectrum veto must be >= 0 (got " + std::to_string(o.impulseSpectrumVeto) + ")");
   if (o.fixedPasses < 0 || o.fixedPasses > 10000) bad("fixed passes must be in [0, 10000] (got " + std::to_string(o.fixedPasses) + ")");
   if (o.riskNormalSmoothing < 0 || o.riskNormalSmoothing > 10000)
     bad("risk normal smoothing must be in [0, 10000] steps (got " + std::to_string(o.riskNormalSmoothing) + ")");
@@ -520,13 +524,14 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     const HighFrequencyNoise high = highFrequencyNoise(mesh, par);
     // Too few vertices far from every crease and boundary, and the reading is one of a handful of
     // samples: neither its level nor its kurtosis is then used (docs/denoising.md#the-noise-level).
+    // Too few vertices far from every crease and boundary, and the reading is one of a handful of
+    // samples: its level is blended with the refined one below, and its kurtosis not used
+    // (docs/denoising.md#the-noise-level, "A reading of few vertices").
     highReading = high.level;
     highSamples = high.samples;
     if (high.samples >= o.highFrequencyMinSamples) {
       if (rankWithHigh) highLevel = high.level;
       result.spectrumKurtosis = high.kurtosis;
-    } else if (rankWithHigh && o.highFallback == 1) {
-      highLevel = -1;  // the race's upper level, below
     }
   }
   if (level == 0) {
@@ -656,10 +661,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   double finalSigma = raceSigma;
   rank.sigma = finalSigma;
   if (o.refineNoise && result.noiseEstimated) {
-    if (highLevel < 0) {
-      finalSigma = raceSigma;
-      rank.sigma = finalSigma;
-    } else if (highLevel > 0) {
+    if (highLevel > 0) {
       // The level from the top of the spectrum, ranked with the lean (a level a little high smooths
       // the normals a little more, which pays).
       finalSigma = highLevel * ael;
@@ -676,7 +678,8 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       if (linearImplied < ratio * ratio * implied) implied = linearImplied;
       finalSigma = std::clamp(std::sqrt(implied), 0.5 * lowSigma, raceSigma);
       rank.sigma = finalSigma;
-      if (o.highFallback == 2 && rankWithHigh && highReading > 0) {
+      if (rankWithHigh && highReading > 0) {
+        // A reading of few vertices, weighted by how many.
         const double w = highSamples / (highSamples + 5.0);
         finalSigma = std::exp(w * std::log(highReading * ael) + (1 - w) * std::log(finalSigma));
         rank.sigma = std::pow(o.levelLean, w) * finalSigma;
@@ -775,14 +778,12 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());
   result.displacementKurtosis = kurtosis(displacements);
   const bool spectrumSaysImpulsive = o.impulseSpectrumKurtosis > 0 && result.spectrumKurtosis > o.impulseSpectrumKurtosis;
-  const bool winnerSaysImpulsive = result.displacementKurtosis > o.impulseKurtosis;
-  const bool spectrumRead = result.spectrumKurtosis > 0;
-  const bool spectrumVetoes = o.spectrumVeto > 0 && spectrumRead && highSamples > 0 &&
-                              result.spectrumKurtosis + 2 * std::sqrt(24.0 / highSamples) < o.spectrumVeto;
-  const bool impulsive = o.spectrumDecides && spectrumRead && o.impulseSpectrumKurtosis > 0
-                             ? spectrumSaysImpulsive
-                             : (winnerSaysImpulsive && !spectrumVetoes) || spectrumSaysImpulsive;
-  if (o.impulseShrink > 0 && impulsive) {
+  // The winner's trigger, unless a spectrum read from enough vertices says the noise's tails are
+  // light (its kurtosis two standard errors under the veto).
+  const bool spectrumVetoes = o.impulseSpectrumVeto > 0 && result.spectrumKurtosis > 0 && highSamples > 0 &&
+                              result.spectrumKurtosis + 2 * std::sqrt(24.0 / highSamples) < o.impulseSpectrumVeto;
+  const bool winnerSaysImpulsive = result.displacementKurtosis > o.impulseKurtosis && !spectrumVetoes;
+  if (o.impulseShrink > 0 && (winnerSaysImpulsive || spectrumSaysImpulsive)) {
     correctOutliers(mesh, input, x, risk.normals(), o.impulseShrink * robustSpread(displacements));
     result.impulseGarrote = true;
   }

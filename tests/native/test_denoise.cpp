@@ -344,6 +344,86 @@ TEST_CASE("the high-frequency kurtosis tells impulsive noise, and triggers the c
   REQUIRE(denoise(given, o).impulseGarrote);
 }
 
+// docs/denoising.md#the-noise-level, "A reading of few vertices": the vertices read are those more
+// than three rings from every crease and boundary; where they are fewer than
+// highFrequencyMinSamples the reading is blended with the refined level by w = n / (n + 5), and its
+// kurtosis does not trigger the impulse correction.
+TEST_CASE("a high-frequency reading of few vertices is weighted by how many, and its kurtosis not used",
+          "[denoise][noise]") {
+  // Counted against a breadth-first search: a grid's vertices more than three rings from its boundary.
+  for (int n : {9, 12, 20}) {
+    const Mesh grid = withNormalNoise(build(shapes::grid(n)), 0.05, 3);
+    std::vector<int> ring(grid.vertexCount(), -1), frontier;
+    for (int v = 0; v < grid.vertexCount(); ++v)
+      if (grid.isBoundaryVertex(v)) {
+        ring[v] = 0;
+        frontier.push_back(v);
+      }
+    for (int r = 1; r <= 3; ++r) {
+      std::vector<int> next;
+      for (int v : frontier)
+        for (int w : grid.neighbors(v))
+          if (ring[w] < 0) {
+            ring[w] = r;
+            next.push_back(w);
+          }
+      frontier.swap(next);
+    }
+    const int far = static_cast<int>(std::count(ring.begin(), ring.end(), -1));
+    INFO("grid " << n);
+    REQUIRE(highFrequencyNoise(grid).samples == far);
+  }
+  REQUIRE(highFrequencyNoise(build(shapes::icosphere(3))).samples == 642);  // no crease, no boundary: all
+
+  // A box of 9 × 9 × 9 cells: 4 vertices read on each side, 24 in all; with noise a few fewer (the
+  // smoothed copy bends by more than 30° here and there).
+  const Mesh box = build(shapes::box(9, 9, 9));
+  REQUIRE(highFrequencyNoise(box).samples == 24);
+  const Mesh noisy = withNormalNoise(box, 0.15, 4);
+  const HighFrequencyNoise high = highFrequencyNoise(noisy);
+  REQUIRE(high.samples > 0);
+  REQUIRE(high.samples < DenoiseOptions{}.highFrequencyMinSamples);
+  REQUIRE(high.level > 0);
+  Mesh refinedMesh = noisy, blendedMesh = noisy, readingMesh = noisy;
+  DenoiseOptions refined;
+  refined.highFrequencyLevel = false;  // the level refined from the candidates alone
+  const DenoiseResult rr = denoise(refinedMesh, refined);
+  const DenoiseResult rb = denoise(blendedMesh);
+  DenoiseOptions reading;
+  reading.highFrequencyMinSamples = 0;  // the reading itself, however few its vertices
+  const DenoiseResult rd = denoise(readingMesh, reading);
+  const double w = high.samples / (high.samples + 5.0);
+  INFO("reading " << high.level << ", refined " << rr.noiseLevel << ", blended " << rb.noiseLevel);
+  REQUIRE(rd.noiseLevel == Approx(high.level).epsilon(1e-12));
+  REQUIRE(rb.noiseLevel == Approx(std::exp(w * std::log(high.level) + (1 - w) * std::log(rr.noiseLevel))).epsilon(1e-9));
+  REQUIRE(rd.spectrumKurtosis == Approx(high.kurtosis).epsilon(1e-12));
+  REQUIRE(rb.spectrumKurtosis == 0);
+  // At the bar the reading is used as it is.
+  DenoiseOptions at;
+  at.highFrequencyMinSamples = high.samples;
+  Mesh atMesh = noisy;
+  REQUIRE(denoise(atMesh, at).noiseLevel == Approx(high.level).epsilon(1e-12));
+}
+
+// The winner's kurtosis is vetoed where a spectrum read from many vertices has light tails: fixed
+// noise on a sphere, the winner's trigger set to fire on anything (kurtosis above 1).
+TEST_CASE("a light-tailed spectrum vetoes the winner's impulse trigger", "[denoise][noise][impulsive]") {
+  const Mesh sphere = build(shapes::icosphere(4));
+  const Mesh noisy = withNoise(sphere, 0.3, 5, NoiseDistribution::Fixed);
+  const HighFrequencyNoise high = highFrequencyNoise(noisy);
+  INFO("spectrum kurtosis " << high.kurtosis << " over " << high.samples << " vertices");
+  REQUIRE(high.kurtosis + 2 * std::sqrt(24.0 / high.samples) < DenoiseOptions{}.impulseSpectrumVeto);
+  DenoiseOptions o;
+  o.impulseKurtosis = 1;
+  Mesh vetoed = noisy, fired = noisy;
+  REQUIRE_FALSE(denoise(vetoed, o).impulseGarrote);
+  o.impulseSpectrumVeto = 0;
+  REQUIRE(denoise(fired, o).impulseGarrote);
+  // Impulsive noise: heavy tails, no veto, the correction runs as before.
+  Mesh spiky = withNoise(sphere, 0.3, 5, NoiseDistribution::Impulsive);
+  REQUIRE(denoise(spiky).impulseGarrote);
+}
+
 TEST_CASE("default denoising gives the same bits for any thread count", "[denoise][threads]") {
   const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
   Mesh one = noisy, two = noisy;

@@ -163,10 +163,13 @@ struct DenoiseOptions {
   // boundary: the level refined from the candidates, as above.
   bool highFrequencyLevel = true;
   double levelLean = 1.1;
-  bool spectrumDecides = false;  // scratch: where the spectrum was read, its kurtosis alone triggers the correction
-  int highFrequencyMinSamples = 0;
-  int highFallback = 0;
-  double spectrumVeto = 0;  // scratch: the winner's trigger is vetoed where the spectrum reads below this by two standard errors  // scratch: 0 the refined level, 1 the race's upper level  // scratch: fewer vertices read than this, and the reading is not used
+  // Where fewer than highFrequencyMinSamples vertices lie three rings from every crease and boundary
+  // (HighFrequencyNoise::samples), the reading r of n vertices is a guess: the level is then
+  // exp(w ln r + (1 − w) ln ρ), ρ the level refined from the candidates, w = n / (n + 5) (the
+  // reading's relative variance about 1 / 2n against the refined level's about 0.1), ranked with
+  // levelLean^w; and the reading's kurtosis does not trigger the impulse correction
+  // (docs/denoising.md#the-noise-level, "A reading of few vertices"). 0: the reading always.
+  int highFrequencyMinSamples = 50;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the
@@ -185,6 +188,12 @@ struct DenoiseOptions {
   // impulseSpectrumKurtosis: detail can hide outliers from the winner's displacement
   // (docs/denoising.md#impulsive-noise). 0: the winner's kurtosis alone.
   double impulseSpectrumKurtosis = 5.5;
+  // The winner's kurtosis reads the mesh's own irregular triangles as well as outliers: its trigger
+  // is vetoed where the spectrum, read from at least highFrequencyMinSamples vertices, says the
+  // noise is lighter-tailed than Gaussian noise in random directions with two standard errors to
+  // spare, kurtosis + 2 √(24 / n) < impulseSpectrumVeto (docs/denoising.md#the-noise-level,
+  // "A reading of few vertices"). 0: never vetoed.
+  double impulseSpectrumVeto = 4;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
   // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risk
   // (mean squared error along the normals): for evaluations and diagnostics.
