@@ -779,8 +779,9 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   result.displacementKurtosis = kurtosis(displacements);
   const bool spectrumSaysImpulsive = o.impulseSpectrumKurtosis > 0 && result.spectrumKurtosis > o.impulseSpectrumKurtosis;
   // The winner's trigger, unless a spectrum read from enough vertices says the noise's tails are
-  // light (its kurtosis two standard errors under the veto).
-  const bool spectrumVetoes = o.impulseSpectrumVeto > 0 && result.spectrumKurtosis > 0 && highSamples > 0 &&
+  // light (its kurtosis two standard errors under the veto). Not where the correction is asked for
+  // in any case (impulseKurtosis 0: the CLI's --impulse on).
+  const bool spectrumVetoes = o.impulseKurtosis > 0 && o.impulseSpectrumVeto > 0 && result.spectrumKurtosis > 0 && highSamples > 0 &&
                               result.spectrumKurtosis + 2 * std::sqrt(24.0 / highSamples) < o.impulseSpectrumVeto;
   const bool winnerSaysImpulsive = result.displacementKurtosis > o.impulseKurtosis && !spectrumVetoes;
   if (o.impulseShrink > 0 && (winnerSaysImpulsive || spectrumSaysImpulsive)) {

@@ -415,10 +415,14 @@ TEST_CASE("a light-tailed spectrum vetoes the winner's impulse trigger", "[denoi
   REQUIRE(high.kurtosis + 2 * std::sqrt(24.0 / high.samples) < DenoiseOptions{}.impulseSpectrumVeto);
   DenoiseOptions o;
   o.impulseKurtosis = 1;
-  Mesh vetoed = noisy, fired = noisy;
+  Mesh vetoed = noisy, fired = noisy, asked = noisy;
   REQUIRE_FALSE(denoise(vetoed, o).impulseGarrote);
   o.impulseSpectrumVeto = 0;
   REQUIRE(denoise(fired, o).impulseGarrote);
+  // Asked for in any case (impulseKurtosis 0, the CLI's --impulse on): no veto.
+  o = {};
+  o.impulseKurtosis = 0;
+  REQUIRE(denoise(asked, o).impulseGarrote);
   // Impulsive noise: heavy tails, no veto, the correction runs as before.
   Mesh spiky = withNoise(sphere, 0.3, 5, NoiseDistribution::Impulsive);
   REQUIRE(denoise(spiky).impulseGarrote);

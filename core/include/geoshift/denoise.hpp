@@ -192,7 +192,8 @@ struct DenoiseOptions {
   // is vetoed where the spectrum, read from at least highFrequencyMinSamples vertices, says the
   // noise is lighter-tailed than Gaussian noise in random directions with two standard errors to
   // spare, kurtosis + 2 √(24 / n) < impulseSpectrumVeto (docs/denoising.md#the-noise-level,
-  // "A reading of few vertices"). 0: never vetoed.
+  // "A reading of few vertices"). Never where impulseKurtosis is 0 (the correction asked for in any
+  // case). 0: never vetoed.
   double impulseSpectrumVeto = 4;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
   // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risk
