@@ -144,10 +144,12 @@ class DenoiseOptions:
     detail_bound_ratio: float
     high_frequency_level: bool
     level_lean: float
+    high_frequency_min_samples: int
     halving_race: bool
     impulse_kurtosis: float
     impulse_shrink: float
     impulse_spectrum_kurtosis: float
+    impulse_spectrum_veto: float
     seed: int
     threads: int
     paper: PaperDenoiseOptions
@@ -169,9 +171,9 @@ class DenoiseOptions:
                  tie_by_normals: bool = True, input_candidate: bool = True, spatial_order: bool = True,
                  refine_noise: bool = True,
                  detail_bound_ratio: float = 0.9, high_frequency_level: bool = True, level_lean: float = 1.1,
-                 halving_race: bool = True,
+                 high_frequency_min_samples: int = 50, halving_race: bool = True,
                  impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
-                 impulse_spectrum_kurtosis: float = 5.5,
+                 impulse_spectrum_kurtosis: float = 5.5, impulse_spectrum_veto: float = 4.0,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
                  min_piece_vertices: int = 50, levels: int = 0, alpha: Sequence[float] = (0.0,),
                  wavelet: Union[WaveletOptions, dict, None] = None) -> None: ...
