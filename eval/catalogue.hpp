@@ -54,8 +54,8 @@ std::vector<MeshEntry> cleanMeshes(const std::filesystem::path& data);
 std::vector<MeshEntry> broadMeshes(const std::filesystem::path& dir);
 
 // The split, decided by names alone before any result was seen: families already used to choose
-// earlier defaults go to tuning, the broad set's to broad; within each category the other families, ordered by fnv1a of the
-// family name, alternate validation, tuning, validation, ...
+// earlier defaults go to tuning, the broad set's to broad; within each category the other
+// families, ordered by fnv1a of the family name, alternate validation, tuning, validation, ...
 std::vector<std::pair<std::string, Set>> splitFamilies(const std::vector<MeshEntry>& meshes);
 
 // The synthetic noises of a mesh: the paper's two readings of 0.5 AEL in random directions (fixed

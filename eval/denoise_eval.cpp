@@ -170,7 +170,7 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> spectrumVeto, strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
+  std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, spectrumVeto, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, highMinSamples, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
@@ -236,7 +236,11 @@ double trueNoiseLevel(const Case& c) {
   return std::sqrt(sum / std::max(1, count)) / averageEdgeLength(c.noisy);
 }
 
-std::string fixed(double x, int digits);
+std::string fixed(double x, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, x);
+  return buf;
+}
 std::string fixed3(double x) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.3f", x);
@@ -340,11 +344,6 @@ struct Result {
   std::vector<Score> ours;  // one per seed
 };
 
-std::string fixed(double x, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, x);
-  return buf;
-}
 
 std::string pairOf(const Score& s) { return s.present() ? fixed(s.rms, 3) + " / " + fixed(s.angle, 2) : "–"; }
 

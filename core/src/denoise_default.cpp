@@ -523,8 +523,6 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     par.threads = o.threads;
     const HighFrequencyNoise high = highFrequencyNoise(mesh, par);
     // Too few vertices far from every crease and boundary, and the reading is one of a handful of
-    // samples: neither its level nor its kurtosis is then used (docs/denoising.md#the-noise-level).
-    // Too few vertices far from every crease and boundary, and the reading is one of a handful of
     // samples: its level is blended with the refined one below, and its kurtosis not used
     // (docs/denoising.md#the-noise-level, "A reading of few vertices").
     highReading = high.level;
