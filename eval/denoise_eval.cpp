@@ -170,7 +170,7 @@ struct OracleCache {
 
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
-  std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, spectrumVeto, impulseInputLevel, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
+  std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, spectrumVeto, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> impulseSpectrumMinSamples, maxPasses, vertexIterations, patience, highMinSamples, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
@@ -203,7 +203,6 @@ struct WhatIf {
     if (patience) o.patience = *patience;
     if (highMinSamples) o.highFrequencyMinSamples = *highMinSamples;
     if (spectrumVeto) o.impulseSpectrumVeto = *spectrumVeto;
-    if (impulseInputLevel) o.impulseInputLevel = *impulseInputLevel;
     if (impulseSpectrumMinSamples) o.impulseSpectrumMinSamples = *impulseSpectrumMinSamples;
     if (fixedPasses) o.fixedPasses = *fixedPasses;
     if (riskNormalSmoothing) o.riskNormalSmoothing = *riskNormalSmoothing;
@@ -568,7 +567,8 @@ int usage(const char* error) {
          "  --impulse-shrink, --impulse-kurtosis, --bounded-divergence on|off, --taubin-only (list, or none),\n"
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
          "  --gradient-risk-weight, --impulse-spectrum-kurtosis, --min-piece (minPieceVertices), --blend-spread,\n"
-         "  --high-min-samples (highFrequencyMinSamples), --impulse-spectrum-veto, --impulse-input-level\n"
+         "  --high-min-samples (highFrequencyMinSamples), --impulse-spectrum-veto,\n"
+         "  --impulse-spectrum-min-samples (impulseSpectrumMinSamples)\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
@@ -656,7 +656,6 @@ int main(int argc, char** argv) {
       else if (a == "--patience") whatIf.patience = std::stoi(value());
       else if (a == "--high-min-samples") whatIf.highMinSamples = std::stoi(value());
       else if (a == "--impulse-spectrum-veto") whatIf.spectrumVeto = std::stod(value());
-      else if (a == "--impulse-input-level") whatIf.impulseInputLevel = std::stod(value());
       else if (a == "--impulse-spectrum-min-samples") whatIf.impulseSpectrumMinSamples = std::stoi(value());
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());

@@ -53,8 +53,8 @@ void validate(const DenoiseOptions& o) {
   if (o.patience < 1) bad("patience must be at least 1 (got " + std::to_string(o.patience) + ")");
   if (o.highFrequencyMinSamples < 0)
     bad("high-frequency minimum samples must be >= 0 (got " + std::to_string(o.highFrequencyMinSamples) + ")");
-  if (!(o.impulseInputLevel >= 0) || !std::isfinite(o.impulseInputLevel))
-    bad("impulse input level must be >= 0 (got " + std::to_string(o.impulseInputLevel) + ")");
+  if (o.impulseSpectrumMinSamples < 0)
+    bad("impulse spectrum minimum samples must be >= 0 (got " + std::to_string(o.impulseSpectrumMinSamples) + ")");
   if (!(o.impulseSpectrumVeto >= 0) || !std::isfinite(o.impulseSpectrumVeto))
     bad("impulse spectrum veto must be >= 0 (got " + std::to_string(o.impulseSpectrumVeto) + ")");
   if (o.fixedPasses < 0 || o.fixedPasses > 10000) bad("fixed passes must be in [0, 10000] (got " + std::to_string(o.fixedPasses) + ")");
@@ -712,12 +712,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   if (finalSigma != raceSigma || raceSigma != lowSigma) result.noiseLevel = finalSigma * o.strength / ael;
   // A correction asked for in any case (a trigger of 0: `--impulse on`) is not overruled.
   const bool correctionForced = o.impulseShrink > 0 && o.impulseKurtosis == 0;
-  const bool spectrumSaysImpulsive = o.impulseSpectrumKurtosis > 0 && result.spectrumKurtosis > o.impulseSpectrumKurtosis &&
-                                     highSamples >= o.impulseSpectrumMinSamples;
-  // Outliers the spectrum reads above a clean mesh's residue: the input is not kept, the winner corrected.
-  const bool outliersOverInput =
-      o.impulseShrink > 0 && spectrumSaysImpulsive && o.impulseInputLevel > 0 && highReading >= o.impulseInputLevel;
-  if (o.inputCandidate && !correctionForced && !outliersOverInput && rank(winnerSums) >= rank(risk.sums(input, risk.probedInput()))) {
+  if (o.inputCandidate && !correctionForced && rank(winnerSums) >= rank(risk.sums(input, risk.probedInput()))) {
     // The input, scored as any candidate is (its rank is 1 up to rounding), is estimated at least as
     // close to the noise-free surface as the best of the others (docs/denoising.md#the-input-as-a-candidate).
     result.keptInput = true;
@@ -782,6 +777,10 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   }
   const std::vector<double> displacements = displacementsAlongN(input, x, risk.normals());
   result.displacementKurtosis = kurtosis(displacements);
+  // The spectrum alone, where read from enough vertices for its fourth moment
+  // (docs/denoising.md#the-noise-level, "The spectrum alone, from few vertices").
+  const bool spectrumSaysImpulsive = o.impulseSpectrumKurtosis > 0 && result.spectrumKurtosis > o.impulseSpectrumKurtosis &&
+                                     highSamples >= o.impulseSpectrumMinSamples;
   // The winner's trigger, unless a spectrum read from enough vertices says the noise's tails are
   // light (its kurtosis two standard errors under the veto). Not where the correction is asked for
   // in any case (impulseKurtosis 0: the CLI's --impulse on).

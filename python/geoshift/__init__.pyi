@@ -149,6 +149,7 @@ class DenoiseOptions:
     impulse_kurtosis: float
     impulse_shrink: float
     impulse_spectrum_kurtosis: float
+    impulse_spectrum_min_samples: int
     impulse_spectrum_veto: float
     seed: int
     threads: int
@@ -173,7 +174,8 @@ class DenoiseOptions:
                  detail_bound_ratio: float = 0.9, high_frequency_level: bool = True, level_lean: float = 1.1,
                  high_frequency_min_samples: int = 50, halving_race: bool = True,
                  impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
-                 impulse_spectrum_kurtosis: float = 5.5, impulse_spectrum_veto: float = 4.0,
+                 impulse_spectrum_kurtosis: float = 5.5, impulse_spectrum_min_samples: int = 100,
+                 impulse_spectrum_veto: float = 4.0,
                  seed: int = 1, threads: int = 0, paper: Union[PaperDenoiseOptions, dict, None] = None,
                  min_piece_vertices: int = 50, levels: int = 0, alpha: Sequence[float] = (0.0,),
                  wavelet: Union[WaveletOptions, dict, None] = None) -> None: ...

@@ -234,6 +234,7 @@ void bindOptions(py::module_& m) {
       .def_readwrite("impulse_kurtosis", &DenoiseOptions::impulseKurtosis)
       .def_readwrite("impulse_shrink", &DenoiseOptions::impulseShrink)
       .def_readwrite("impulse_spectrum_kurtosis", &DenoiseOptions::impulseSpectrumKurtosis)
+      .def_readwrite("impulse_spectrum_min_samples", &DenoiseOptions::impulseSpectrumMinSamples)
       .def_readwrite("impulse_spectrum_veto", &DenoiseOptions::impulseSpectrumVeto)
       .def_readwrite("seed", &DenoiseOptions::seed)
       .def_readwrite("threads", &DenoiseOptions::threads)

@@ -428,6 +428,27 @@ TEST_CASE("a light-tailed spectrum vetoes the winner's impulse trigger", "[denoi
   REQUIRE(denoise(spiky).impulseGarrote);
 }
 
+// The spectrum's trigger alone (the winner's switched off) needs a reading of
+// impulseSpectrumMinSamples vertices: impulsive noise on a sphere fires it at the sphere's own count
+// and not one above.
+TEST_CASE("the spectrum's impulse trigger needs enough vertices read", "[denoise][noise][impulsive]") {
+  const Mesh noisy = withNoise(build(shapes::icosphere(3)), 0.3, 7, NoiseDistribution::Impulsive);
+  const HighFrequencyNoise high = highFrequencyNoise(noisy);
+  INFO("spectrum kurtosis " << high.kurtosis << " over " << high.samples << " vertices");
+  REQUIRE(high.kurtosis > DenoiseOptions{}.impulseSpectrumKurtosis);
+  REQUIRE(high.samples >= DenoiseOptions{}.impulseSpectrumMinSamples);
+  DenoiseOptions o;
+  o.impulseKurtosis = 1e9;  // the winner never says so
+  Mesh byDefault = noisy, atCount = noisy, above = noisy;
+  REQUIRE(denoise(byDefault, o).impulseGarrote);
+  o.impulseSpectrumMinSamples = high.samples;
+  REQUIRE(denoise(atCount, o).impulseGarrote);
+  o.impulseSpectrumMinSamples = high.samples + 1;
+  const DenoiseResult r = denoise(above, o);
+  REQUIRE_FALSE(r.impulseGarrote);
+  REQUIRE(r.spectrumKurtosis == Approx(high.kurtosis));  // still read and reported
+}
+
 TEST_CASE("default denoising gives the same bits for any thread count", "[denoise][threads]") {
   const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
   Mesh one = noisy, two = noisy;
@@ -884,6 +905,7 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.blendSpread = std::nan(""); }, "NaN blend spread");
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = -0.1; }, "negative gradient risk weight");
   refuses([](DenoiseOptions& o) { o.impulseSpectrumKurtosis = -1; }, "negative impulse spectrum kurtosis");
+  refuses([](DenoiseOptions& o) { o.impulseSpectrumMinSamples = -1; }, "negative impulse spectrum minimum samples");
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = std::nan(""); }, "NaN gradient risk weight");
   refuses([](DenoiseOptions& o) { o.levelLean = std::nan(""); }, "NaN level lean");
   refuses([](DenoiseOptions& o) { o.minPieceVertices = -1; }, "negative smallest piece");

@@ -188,9 +188,12 @@ struct DenoiseOptions {
   // impulseSpectrumKurtosis: detail can hide outliers from the winner's displacement
   // (docs/denoising.md#impulsive-noise). 0: the winner's kurtosis alone.
   double impulseSpectrumKurtosis = 5.5;
-  // ... read from at least impulseSpectrumMinSamples vertices (HighFrequencyNoise::samples): a fourth
-  // moment of fewer is a guess (scratch).
-  int impulseSpectrumMinSamples = 0;
+  // The spectrum's trigger needs a reading of at least impulseSpectrumMinSamples vertices
+  // (HighFrequencyNoise::samples): with n read, Gaussian noise's kurtosis has a standard error of about
+  // √(24 / n), and at 100 the trigger stands three of them above Gaussian noise in random directions
+  // (about 4). Below, the winner's kurtosis must say so too (docs/denoising.md#the-noise-level, "The
+  // spectrum alone, from few vertices"). 0: any reading of at least highFrequencyMinSamples.
+  int impulseSpectrumMinSamples = 100;
   // The winner's kurtosis reads the mesh's own irregular triangles as well as outliers: its trigger
   // is vetoed where the spectrum, read from at least highFrequencyMinSamples vertices, says the
   // noise is lighter-tailed than Gaussian noise in random directions with two standard errors to
@@ -198,13 +201,6 @@ struct DenoiseOptions {
   // "A reading of few vertices"). Never where impulseKurtosis is 0 (the correction asked for in any
   // case). 0: never vetoed.
   double impulseSpectrumVeto = 4;
-  // Where the spectrum says the noise is impulsive (its kurtosis above impulseSpectrumKurtosis, read
-  // from at least highFrequencyMinSamples vertices) at a level of at least impulseInputLevel average
-  // edge lengths, the input is not kept even when it ranks first: the winner is corrected instead.
-  // SURE charges every vertex the same variance, so under sparse outliers the input outranks every
-  // smoothing, though the corrected winner is closer; a clean mesh's residue reads far below the level
-  // (docs/denoising.md#the-input-as-a-candidate). 0: the input kept whenever it ranks first.
-  double impulseInputLevel = 0;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
   // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risk
   // (mean squared error along the normals): for evaluations and diagnostics.
