@@ -173,7 +173,7 @@ struct WhatIf {
   std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, spectrumVeto, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
       taubinOnlyMargin, taubinOnlyMu;
   std::optional<std::vector<int>> taubinOnlySteps;
-  std::optional<int> impulseSpectrumMinSamples, maxPasses, vertexIterations, patience, highMinSamples, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
+  std::optional<int> maxPasses, vertexIterations, patience, highMinSamples, impulseSpectrumMinSamples, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes, minPieceVertices;
   std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
       spatialOrder;
@@ -202,8 +202,8 @@ struct WhatIf {
     if (vertexIterations) o.vertexIterations = *vertexIterations;
     if (patience) o.patience = *patience;
     if (highMinSamples) o.highFrequencyMinSamples = *highMinSamples;
-    if (spectrumVeto) o.impulseSpectrumVeto = *spectrumVeto;
     if (impulseSpectrumMinSamples) o.impulseSpectrumMinSamples = *impulseSpectrumMinSamples;
+    if (spectrumVeto) o.impulseSpectrumVeto = *spectrumVeto;
     if (fixedPasses) o.fixedPasses = *fixedPasses;
     if (riskNormalSmoothing) o.riskNormalSmoothing = *riskNormalSmoothing;
     if (!range.empty()) o.rangeBandwidths = range;
