@@ -242,11 +242,7 @@ std::string fixed(double x, int digits) {
   std::snprintf(buf, sizeof buf, "%.*f", digits, x);
   return buf;
 }
-std::string fixed3(double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.3f", x);
-  return buf;
-}
+std::string fixed3(double x) { return fixed(x, 3); }
 
 // A candidate blended in (DenoiseResult::Blend), for the scoreboard's note; empty when none.
 std::string blended(const std::string& lead, const DenoiseResult::Blend& b) {
@@ -344,7 +340,6 @@ struct Result {
   Score noisy, taubin, bilateral, gcn, paper;
   std::vector<Score> ours;  // one per seed
 };
-
 
 std::string pairOf(const Score& s) { return s.present() ? fixed(s.rms, 3) + " / " + fixed(s.angle, 2) : "–"; }
 
