@@ -171,7 +171,7 @@ struct OracleCache {
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
   std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, spectrumVeto, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
-      taubinOnlyMargin, taubinOnlyMu;
+      taubinOnlyMargin, taubinOnlyMu, planarLevelShare;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, highMinSamples, impulseSpectrumMinSamples, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes, minPieceVertices;
@@ -203,6 +203,7 @@ struct WhatIf {
     if (patience) o.patience = *patience;
     if (highMinSamples) o.highFrequencyMinSamples = *highMinSamples;
     if (impulseSpectrumMinSamples) o.impulseSpectrumMinSamples = *impulseSpectrumMinSamples;
+    if (planarLevelShare) o.planarLevelShare = *planarLevelShare;
     if (spectrumVeto) o.impulseSpectrumVeto = *spectrumVeto;
     if (fixedPasses) o.fixedPasses = *fixedPasses;
     if (riskNormalSmoothing) o.riskNormalSmoothing = *riskNormalSmoothing;
@@ -563,7 +564,7 @@ int usage(const char* error) {
          "  --taubin-only-margin, --taubin-only-mu (candidateTaubin.mu), --high-frequency-level on|off, --level-lean,\n"
          "  --gradient-risk-weight, --impulse-spectrum-kurtosis, --min-piece (minPieceVertices), --blend-spread,\n"
          "  --high-min-samples (highFrequencyMinSamples), --impulse-spectrum-veto,\n"
-         "  --impulse-spectrum-min-samples (impulseSpectrumMinSamples)\n"
+         "  --impulse-spectrum-min-samples (impulseSpectrumMinSamples), --planar-level-share (planarLevelShare)\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
@@ -652,6 +653,7 @@ int main(int argc, char** argv) {
       else if (a == "--high-min-samples") whatIf.highMinSamples = std::stoi(value());
       else if (a == "--impulse-spectrum-veto") whatIf.spectrumVeto = std::stod(value());
       else if (a == "--impulse-spectrum-min-samples") whatIf.impulseSpectrumMinSamples = std::stoi(value());
+      else if (a == "--planar-level-share") whatIf.planarLevelShare = std::stod(value());
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());
@@ -801,9 +803,11 @@ int main(int argc, char** argv) {
           ParallelOptions one;
           one.threads = 1;
           const HighFrequencyNoise high = highFrequencyNoise(c.noisy, one);
-          std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | high %.3f | kurtosis %.2f | samples %d of %d | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f)\n",
+          const PlanarNoise planar = planarNoise(c.noisy), planarClean = planarNoise(c.clean);
+          std::printf("noise | %-28s | %-36s | true %.3f | est %.3f | high %.3f | kurtosis %.2f | samples %d of %d | mean %.3f | t.1 %.3f (%.2f) | t.2 %.3f (%.2f) | t.4 %.3f (%.2f) | planar %.3f share %.2f read %d | clean share %.2f\n",
                       c.mesh.c_str(), c.noise.c_str(), trueNoiseLevel(c), estimateNoise(c.noisy).level, high.level,
-                      high.kurtosis, high.samples, c.noisy.vertexCount(), a, b, k1, d, k2, e, k3);
+                      high.kurtosis, high.samples, c.noisy.vertexCount(), a, b, k1, d, k2, e, k3, planar.level,
+                      planar.confirmedShare, planar.samples, planarClean.confirmedShare);
           continue;
         }
         Result& r = results[t];

@@ -51,6 +51,8 @@ void validate(const DenoiseOptions& o) {
     bad("Taubin-only margin must be >= 0 (got " + std::to_string(o.taubinOnlyMargin) + ")");
   if (o.maxPasses < 1 || o.maxPasses > 10000) bad("maximum passes must be in [1, 10000] (got " + std::to_string(o.maxPasses) + ")");
   if (o.patience < 1) bad("patience must be at least 1 (got " + std::to_string(o.patience) + ")");
+  if (!(o.planarLevelShare >= 0 && o.planarLevelShare <= 1))
+    bad("planar level share must be in [0, 1] (got " + std::to_string(o.planarLevelShare) + ")");
   if (o.highFrequencyMinSamples < 0)
     bad("high-frequency minimum samples must be >= 0 (got " + std::to_string(o.highFrequencyMinSamples) + ")");
   if (o.impulseSpectrumMinSamples < 0)
@@ -519,6 +521,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   // enough from a crease or a boundary.
   double highLevel = 0, highReading = 0;
   int highSamples = 0;
+  PlanarNoise planar;  // read where the spectrum reads too few vertices (DenoiseOptions::planarLevelShare)
   const bool rankWithHigh = level == 0 && o.refineNoise && o.highFrequencyLevel;
   if (rankWithHigh || (o.impulseShrink > 0 && o.impulseSpectrumKurtosis > 0)) {
     ParallelOptions par;
@@ -532,6 +535,8 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     if (high.samples >= o.highFrequencyMinSamples) {
       if (rankWithHigh) highLevel = high.level;
       result.spectrumKurtosis = high.kurtosis;
+    } else if (rankWithHigh && o.planarLevelShare > 0) {
+      planar = planarNoise(mesh);
     }
   }
   if (level == 0) {
@@ -678,7 +683,12 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       if (linearImplied < ratio * ratio * implied) implied = linearImplied;
       finalSigma = std::clamp(std::sqrt(implied), 0.5 * lowSigma, raceSigma);
       rank.sigma = finalSigma;
-      if (rankWithHigh && highReading > 0) {
+      if (planar.samples > 0 && planar.confirmedShare >= o.planarLevelShare) {
+        // Flat faces the noise mostly left alone: the level read against their planes (a clean
+        // part reads 0: ranked with a level far below any candidate's change, it is kept).
+        finalSigma = std::max(planar.level, 1e-3) * ael;
+        rank.sigma = o.levelLean * finalSigma;
+      } else if (rankWithHigh && highReading > 0) {
         // A reading of few vertices, weighted by how many.
         const double w = highSamples / (highSamples + 5.0);
         finalSigma = std::exp(w * std::log(highReading * ael) + (1 - w) * std::log(finalSigma));

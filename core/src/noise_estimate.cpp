@@ -216,6 +216,52 @@ HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& p
   return {std::sqrt(measured / expected) / averageEdgeLength(mesh), fourth / count / (meanSquare * meanSquare), count};
 }
 
+PlanarNoise planarNoise(const Mesh& mesh) {
+  // docs/denoising.md#noise-estimate ("Planes left untouched").
+  constexpr double kSameDegrees = 1;
+  const int nv = mesh.vertexCount(), nf = mesh.faceCount();
+  if (nv == 0 || nf == 0) return {};
+  const std::vector<Vec3> normal = faceNormals(mesh);
+  const double sameCos = std::cos(kSameDegrees * 3.14159265358979323846 / 180);
+  std::vector<char> confirmed(nf, 0);
+  int count = 0;
+  for (int f = 0; f < nf; ++f) {
+    if (normal[f].squaredNorm() == 0) continue;
+    for (int k = 0; k < 3 && !confirmed[f]; ++k) {
+      const int o = mesh.twin(3 * f + k);
+      if (o >= 0 && normal[f].dot(normal[Mesh::faceOf(o)]) >= sameCos) confirmed[f] = 1;
+    }
+    count += confirmed[f];
+  }
+  PlanarNoise out;
+  out.confirmedShare = static_cast<double>(count) / nf;
+  if (count == 0) return out;
+  double sum = 0;
+  int read = 0;
+  for (int v = 0; v < nv; ++v) {
+    if (mesh.isIsolated(v)) continue;
+    const Vec3& y = mesh.position(v);
+    double nearest = -1;
+    // The faces around each neighbour: v's two-ring.
+    for (int u : mesh.neighbors(v)) {
+      mesh.forEachOutgoing(u, [&](int h) {
+        const int f = Mesh::faceOf(h);
+        if (!confirmed[f]) return;
+        const Face& c = mesh.face(f);
+        if (c[0] == v || c[1] == v || c[2] == v) return;
+        const double d = std::abs((y - mesh.position(c[0])).dot(normal[f]));
+        if (nearest < 0 || d < nearest) nearest = d;
+      });
+    }
+    if (nearest < 0) continue;
+    sum += nearest * nearest;
+    ++read;
+  }
+  out.samples = read;
+  if (read > 0) out.level = std::sqrt(sum / read) / averageEdgeLength(mesh);
+  return out;
+}
+
 double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel) {
   return highFrequencyNoise(mesh, parallel).level;
 }

@@ -170,6 +170,12 @@ struct DenoiseOptions {
   // levelLean^w; and the reading's kurtosis does not trigger the impulse correction
   // (docs/denoising.md#the-noise-level, "A reading of few vertices"). 0: the reading always.
   int highFrequencyMinSamples = 50;
+  // Where the spectrum reads fewer than highFrequencyMinSamples vertices and at least
+  // planarLevelShare of the faces lie in the plane of a face across an edge (planarNoise in
+  // noise.hpp: a part of flat faces that the noise left mostly where they were), the level is read
+  // against those planes instead, ranked with levelLean (docs/denoising.md#the-noise-level, "Planes
+  // left untouched"). 0: never.
+  double planarLevelShare = 0;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the

@@ -72,6 +72,21 @@ struct HighFrequencyNoise {
   int samples = 0;  // the vertices read: those three rings from any crease, boundary or isolated vertex
 };
 HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& parallel = {});
+// The noise level read against the mesh's own planes (docs/denoising.md#noise-estimate, "Planes
+// left untouched"), for meshes of flat faces whose noise left most faces where they were (sparse,
+// impulsive noise on a CAD part): a face is *confirmed* when a face across one of its edges lies in
+// its plane (normals within 1°), which noise of any density breaks and which clean flat parts keep.
+// Each vertex reads its distance to the nearest plane of a confirmed face of its two-ring that does
+// not touch it; the level is the RMS of those distances over the vertices that have one. Where
+// creases meet, a vertex moved along one plane stays in the other, so the reading there is a lower
+// one. In average edge lengths; all 0 on a mesh without confirmed faces.
+struct PlanarNoise {
+  double level = 0;
+  double confirmedShare = 0;  // confirmed faces over all faces
+  int samples = 0;            // vertices read
+};
+PlanarNoise planarNoise(const Mesh& mesh);
+
 double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel = {});  // its level
 
 // Its parts: the sampled vertices (interior, not isolated, evenly spread over the index range), and
