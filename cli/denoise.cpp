@@ -45,7 +45,10 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
   }
   std::ostringstream line;
   line.precision(3);
-  line << "geoshift: noise level " << r.noiseLevel << " AEL" << (r.noiseEstimated ? " (estimated from the mesh" : " (given")
+  // docs/denoising.md#the-noise-level ("Planes left untouched")
+  line << "geoshift: noise level " << r.noiseLevel << " AEL"
+       << (r.noiseEstimated ? (r.planarLevel ? " (estimated from the mesh, against the planes the noise left" : " (estimated from the mesh")
+                            : " (given")
        << (o.strength != 1 ? ", times strength " : "");
   if (o.strength != 1) line << o.strength;
   line << "); ";

@@ -296,7 +296,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
   if (paper) {
     note << o.paper.passes << " passes";
   } else {
-    note << "σ " << r.noiseLevel << " AEL; ";
+    note << "σ " << r.noiseLevel << " AEL" << (r.planarLevel ? " from planes" : "") << "; ";
     if (r.keptInput)
       note << "the input kept as it was";
     else if (r.taubinOnly)

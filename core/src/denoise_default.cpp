@@ -688,6 +688,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
         // part reads 0: ranked with a level far below any candidate's change, it is kept).
         finalSigma = std::max(planar.level, 1e-3) * ael;
         rank.sigma = o.levelLean * finalSigma;
+        result.planarLevel = true;
       } else if (rankWithHigh && highReading > 0) {
         // A reading of few vertices, weighted by how many.
         const double w = highSamples / (highSamples + 5.0);

@@ -230,6 +230,7 @@ void bindOptions(py::module_& m) {
       .def_readwrite("high_frequency_level", &DenoiseOptions::highFrequencyLevel)
       .def_readwrite("level_lean", &DenoiseOptions::levelLean)
       .def_readwrite("high_frequency_min_samples", &DenoiseOptions::highFrequencyMinSamples)
+      .def_readwrite("planar_level_share", &DenoiseOptions::planarLevelShare)
       .def_readwrite("halving_race", &DenoiseOptions::halvingRace)
       .def_readwrite("impulse_kurtosis", &DenoiseOptions::impulseKurtosis)
       .def_readwrite("impulse_shrink", &DenoiseOptions::impulseShrink)

@@ -159,6 +159,18 @@ TEST_CASE("cli: denoise turns faces wound against their neighbours and says so",
   }
 }
 
+// docs/denoising.md#the-noise-level ("Planes left untouched"): a clean part of flat faces too
+// coarse for the spectrum is measured against its planes and comes back as it went in.
+TEST_CASE("cli: a clean coarse part is measured against its planes and kept", "[cli][denoise]") {
+  const fs::path dir = tempDir("cli-denoise-planes");
+  writeOff(dir / "part.off", shapes::box(5, 5, 5));
+  const Run r = geoshiftCli("denoise " + q(dir / "part.off") + " -o " + q(dir / "out.off"));
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("(estimated from the mesh, against the planes the noise left)"));
+  CHECK_THAT(r.err, Catch::Contains("kept as it was"));
+  CHECK(rmsToClean(dir / "out.off", dir / "part.off") == 0);
+}
+
 TEST_CASE("cli: denoise removes noise with every method and says what it did", "[cli][denoise]") {
   const fs::path dir = tempDir("cli-denoise");
   const TriangleSoup clean = shapes::box(12, 10, 8, Vec3(1.0, 0.8, 0.6));

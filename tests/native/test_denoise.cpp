@@ -449,6 +449,84 @@ TEST_CASE("the spectrum's impulse trigger needs enough vertices read", "[denoise
   REQUIRE(r.spectrumKurtosis == Approx(high.kurtosis));  // still read and reported
 }
 
+// docs/denoising.md#the-noise-level ("Planes left untouched"). A box of flat sides: clean, every face
+// lies in the plane of a neighbour and every vertex on a plane of its two-ring (level 0). A few
+// vertices moved along the normal of their side, each four rings from the others and from the
+// box's edges, are read exactly: a moved vertex at its displacement, every other vertex at 0 (it
+// has an untouched face of its own side in its two-ring). Dense noise confirms almost no face, and
+// a sphere's faces none.
+TEST_CASE("the level read against untouched planes", "[denoise][noise]") {
+  const Mesh box = build(shapes::box(12, 12, 12));
+  const PlanarNoise clean = planarNoise(box);
+  REQUIRE(clean.confirmedShare == 1);
+  REQUIRE(clean.samples == box.vertexCount());
+  REQUIRE(clean.level < 1e-12);
+
+  Mesh spiky = box;
+  double sum = 0;
+  int moved = 0;
+  const double cell = 1.0 / 12;
+  for (int v = 0; v < spiky.vertexCount(); ++v) {
+    Vec3& p = spiky.position(v);
+    const double i = (p.x() + 0.5) / cell, j = (p.y() + 0.5) / cell;  // the box is [-1/2, 1/2]³
+    const bool top = std::abs(p.z() - 0.5) < 1e-9;
+    const auto at = [](double k) { return std::abs(k - 4) < 1e-6 || std::abs(k - 8) < 1e-6; };
+    if (!top || !at(i) || !at(j)) continue;
+    const double d = (moved % 2 ? -0.2 : 0.35) * cell * (1 + moved);
+    p.z() += d;
+    sum += d * d;
+    ++moved;
+  }
+  REQUIRE(moved == 4);
+  const PlanarNoise read = planarNoise(spiky);
+  INFO("share " << read.confirmedShare << ", level " << read.level);
+  REQUIRE(read.samples == spiky.vertexCount());
+  REQUIRE(read.confirmedShare > 0.9);
+  REQUIRE(read.level == Approx(std::sqrt(sum / spiky.vertexCount()) / averageEdgeLength(spiky)).epsilon(1e-9));
+
+  const PlanarNoise dense = planarNoise(withNormalNoise(box, 0.3, 2));
+  REQUIRE(dense.confirmedShare < 0.1);  // the gate is 0.5
+  const PlanarNoise sphere = planarNoise(build(shapes::icosphere(3)));
+  REQUIRE(sphere.confirmedShare == 0);
+  REQUIRE(sphere.samples == 0);
+  REQUIRE(sphere.level == 0);
+}
+
+// Where the spectrum reads too few vertices, a part of flat faces is measured against its planes: a
+// clean coarse box comes back as it went in (the level refined from the candidates moved it), and
+// sparse outliers on it are ranked with the planar reading.
+TEST_CASE("a part of flat faces is measured against its planes where the spectrum reads too few vertices",
+          "[denoise][noise]") {
+  const Mesh box = build(shapes::box(5, 5, 5));
+  REQUIRE(highFrequencyNoise(box).samples < DenoiseOptions{}.highFrequencyMinSamples);
+  REQUIRE(box.vertexCount() >= DenoiseOptions{}.minPieceVertices);
+  Mesh kept = box, refined = box;
+  const DenoiseResult r = denoise(kept);
+  REQUIRE(r.planarLevel);
+  REQUIRE(r.keptInput);
+  REQUIRE(kept.positions() == box.positions());
+  DenoiseOptions off;
+  off.planarLevelShare = 0;
+  const DenoiseResult rr = denoise(refined, off);
+  INFO("refined level " << rr.noiseLevel);
+  REQUIRE_FALSE(rr.planarLevel);
+  REQUIRE(refined.positions() != box.positions());
+
+  const Mesh noisy = withNoise(box, 0.4, 3, NoiseDistribution::Impulsive);
+  const PlanarNoise planar = planarNoise(noisy);
+  REQUIRE(planar.confirmedShare >= DenoiseOptions{}.planarLevelShare);
+  Mesh a = noisy, b = noisy;
+  const DenoiseResult ra = denoise(a);
+  REQUIRE(ra.planarLevel);
+  REQUIRE(ra.noiseLevel == Approx(planar.level).epsilon(1e-9));
+  REQUIRE(rmsTo(a, box) < rmsTo(noisy, box));
+  DenoiseOptions above;
+  above.planarLevelShare = std::min(1.0, planar.confirmedShare + 0.01);
+  const DenoiseResult rb = denoise(b, above);
+  REQUIRE_FALSE(rb.planarLevel);
+  REQUIRE(rb.noiseLevel != Approx(planar.level).epsilon(1e-3));
+}
+
 TEST_CASE("default denoising gives the same bits for any thread count", "[denoise][threads]") {
   const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
   Mesh one = noisy, two = noisy;
@@ -906,6 +984,9 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = -0.1; }, "negative gradient risk weight");
   refuses([](DenoiseOptions& o) { o.impulseSpectrumKurtosis = -1; }, "negative impulse spectrum kurtosis");
   refuses([](DenoiseOptions& o) { o.impulseSpectrumMinSamples = -1; }, "negative impulse spectrum minimum samples");
+  refuses([](DenoiseOptions& o) { o.planarLevelShare = -0.1; }, "negative planar level share");
+  refuses([](DenoiseOptions& o) { o.planarLevelShare = 1.5; }, "planar level share above 1");
+  refuses([](DenoiseOptions& o) { o.planarLevelShare = std::nan(""); }, "NaN planar level share");
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = std::nan(""); }, "NaN gradient risk weight");
   refuses([](DenoiseOptions& o) { o.levelLean = std::nan(""); }, "NaN level lean");
   refuses([](DenoiseOptions& o) { o.minPieceVertices = -1; }, "negative smallest piece");

@@ -318,6 +318,20 @@ def test_denoise_returns_a_mesh_no_candidate_improves_as_it_was():
     assert geoshift.DenoiseOptions().input_candidate is True
 
 
+def test_denoise_keeps_a_clean_coarse_part_measured_against_its_planes():
+    """docs/denoising.md#the-noise-level ("Planes left untouched"): a clean box too coarse for the
+    spectrum reads no noise against its own planes and comes back as it went in; with
+    planar_level_share=0 the level refined from the candidates moves it."""
+    box = _box_surface(5)
+    kept = geoshift.denoise(box)
+    assert kept.stats["planar_level"] is True and kept.stats["kept_input"] is True
+    np.testing.assert_array_equal(kept.mesh.positions, box.positions)
+    moved = geoshift.denoise(box, planar_level_share=0)
+    assert moved.stats["planar_level"] is False
+    assert not np.array_equal(moved.mesh.positions, box.positions)
+    assert geoshift.DenoiseOptions().planar_level_share == 0.5
+
+
 def test_denoise_takes_the_risk_estimate_options(terrain):
     """The risk estimate's settings reach the denoiser: out-of-range values are refused with the
     core's message, and the noise level without its refinement is the race's upper estimate, at

@@ -175,7 +175,7 @@ struct DenoiseOptions {
   // noise.hpp: a part of flat faces that the noise left mostly where they were), the level is read
   // against those planes instead, ranked with levelLean (docs/denoising.md#the-noise-level, "Planes
   // left untouched"). 0: never.
-  double planarLevelShare = 0;
+  double planarLevelShare = 0.5;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the
@@ -246,6 +246,7 @@ struct DenoiseResult {
   double spectrumKurtosis = 0;      // of the input's highest frequencies (impulseSpectrumKurtosis); 0: not read
   bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)
   bool keptInput = false;       // no candidate ranked below the input: returned as it was (inputCandidate)
+  bool planarLevel = false;     // the level was read against the planes the noise left (planarLevelShare)
   // The candidates blended in (blendSpread), each with its weight in the mix it joined (0: none;
   // then the other fields are 0): `blend`, the other family's, mixed with the winner; `startBlend`,
   // the other start's, mixed with that. The result is (1 − s) ((1 − b) x_W + b x_O) + s x_S for the
