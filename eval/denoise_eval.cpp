@@ -171,7 +171,7 @@ struct OracleCache {
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
   std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, spectrumVeto, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
-      taubinOnlyMargin, taubinOnlyMu, planarLevelShare;
+      taubinOnlyMargin, taubinOnlyMu, planarLevelShare, planarKeep;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, highMinSamples, impulseSpectrumMinSamples, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
       tieProbes, minPieceVertices;
@@ -204,6 +204,7 @@ struct WhatIf {
     if (highMinSamples) o.highFrequencyMinSamples = *highMinSamples;
     if (impulseSpectrumMinSamples) o.impulseSpectrumMinSamples = *impulseSpectrumMinSamples;
     if (planarLevelShare) o.planarLevelShare = *planarLevelShare;
+    if (planarKeep) o.planarKeep = *planarKeep;
     if (spectrumVeto) o.impulseSpectrumVeto = *spectrumVeto;
     if (fixedPasses) o.fixedPasses = *fixedPasses;
     if (riskNormalSmoothing) o.riskNormalSmoothing = *riskNormalSmoothing;
@@ -654,6 +655,7 @@ int main(int argc, char** argv) {
       else if (a == "--impulse-spectrum-veto") whatIf.spectrumVeto = std::stod(value());
       else if (a == "--impulse-spectrum-min-samples") whatIf.impulseSpectrumMinSamples = std::stoi(value());
       else if (a == "--planar-level-share") whatIf.planarLevelShare = std::stod(value());
+      else if (a == "--planar-keep") whatIf.planarKeep = std::stod(value());
       else if (a == "--fixed-passes") whatIf.fixedPasses = std::stoi(value());
       else if (a == "--risk-normal-smoothing") whatIf.riskNormalSmoothing = std::stoi(value());
       else if (a == "--probe-spacing") whatIf.probeSpacing = std::stoi(value());

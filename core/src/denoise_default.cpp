@@ -469,6 +469,35 @@ size_t settleTie(const Mesh& mesh, const DenoiseOptions& o, Passes& passes, Risk
   return won.index;
 }
 
+// docs/denoising.md#impulsive-noise ("Vertices on untouched planes"). On a part of flat faces that
+// the noise mostly left alone, a vertex that fits an untouched plane (within `bar` of the nearest
+// plane of a confirmed face of its two-ring, and in the plane of the face across the edge opposite
+// it in one of its faces), each of whose faces off its neighbours' planes holds another vertex
+// that does not fit, was not moved by the noise: it keeps its input position. Returns how many
+// moved back.
+int keepUntouchedPlanes(const Mesh& mesh, const std::vector<Vec3>& input, std::vector<Vec3>& x, const DenoiseOptions& o,
+                        double bar) {
+  double share = 0;
+  std::vector<char> confirmed, inPlane;
+  const std::vector<double> residual = planarResiduals(mesh, input, &share, &confirmed, &inPlane);
+  if (share < o.planarLevelShare) return 0;
+  std::vector<char> fits(x.size(), 0), explained(x.size(), 1);
+  for (size_t v = 0; v < x.size(); ++v) fits[v] = residual[v] >= 0 && residual[v] <= bar && inPlane[v];
+  for (int f = 0; f < mesh.faceCount(); ++f) {
+    if (confirmed[f]) continue;
+    const Face& c = mesh.face(f);
+    for (int k = 0; k < 3; ++k)
+      if (fits[c[(k + 1) % 3]] && fits[c[(k + 2) % 3]]) explained[c[k]] = 0;
+  }
+  int kept = 0;
+  for (size_t v = 0; v < x.size(); ++v)
+    if (fits[v] && explained[v] && x[v] != input[v]) {
+      x[v] = input[v];
+      ++kept;
+    }
+  return kept;
+}
+
 }  // namespace
 
 void correctOutliers(const Mesh& mesh, const std::vector<Vec3>& input, std::vector<Vec3>& x,
@@ -801,6 +830,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   if (o.impulseShrink > 0 && (winnerSaysImpulsive || spectrumSaysImpulsive)) {
     correctOutliers(mesh, input, x, risk.normals(), o.impulseShrink * robustSpread(displacements));
     result.impulseGarrote = true;
+    if (o.planarKeep > 0 && o.planarLevelShare > 0) result.planarKept = keepUntouchedPlanes(mesh, input, x, o, o.planarKeep * finalSigma);
   }
   mesh.positions() = std::move(x);
   restore.armed = false;

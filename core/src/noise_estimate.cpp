@@ -216,12 +216,21 @@ HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& p
   return {std::sqrt(measured / expected) / averageEdgeLength(mesh), fourth / count / (meanSquare * meanSquare), count};
 }
 
-PlanarNoise planarNoise(const Mesh& mesh) {
+std::vector<double> planarResiduals(const Mesh& mesh, const std::vector<Vec3>& positions, double* confirmedShare,
+                                    std::vector<char>* confirmedFaces, std::vector<char>* inPlane) {
   // docs/denoising.md#noise-estimate ("Planes left untouched").
   constexpr double kSameDegrees = 1;
   const int nv = mesh.vertexCount(), nf = mesh.faceCount();
-  if (nv == 0 || nf == 0) return {};
-  const std::vector<Vec3> normal = faceNormals(mesh);
+  std::vector<double> residual(nv, -1.0);
+  if (confirmedShare) *confirmedShare = 0;
+  if (nv == 0 || nf == 0) return residual;
+  std::vector<Vec3> normal(nf);
+  for (int f = 0; f < nf; ++f) {
+    const Face& c = mesh.face(f);
+    const Vec3 n = (positions[c[1]] - positions[c[0]]).cross(positions[c[2]] - positions[c[0]]);
+    const double length = n.norm();
+    normal[f] = length > 0 ? Vec3(n / length) : Vec3::Zero();
+  }
   const double sameCos = std::cos(kSameDegrees * 3.14159265358979323846 / 180);
   std::vector<char> confirmed(nf, 0);
   int count = 0;
@@ -233,14 +242,23 @@ PlanarNoise planarNoise(const Mesh& mesh) {
     }
     count += confirmed[f];
   }
-  PlanarNoise out;
-  out.confirmedShare = static_cast<double>(count) / nf;
-  if (count == 0) return out;
-  double sum = 0;
-  int read = 0;
+  if (confirmedShare) *confirmedShare = static_cast<double>(count) / nf;
+  if (confirmedFaces) *confirmedFaces = confirmed;
+  if (inPlane) {
+    // v lies in the plane of the face across the edge opposite it in one of its faces.
+    inPlane->assign(nv, 0);
+    for (int f = 0; f < nf; ++f) {
+      if (normal[f].squaredNorm() == 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        const int o = mesh.twin(3 * f + (k + 1) % 3);
+        if (o >= 0 && normal[f].dot(normal[Mesh::faceOf(o)]) >= sameCos) (*inPlane)[mesh.face(f)[k]] = 1;
+      }
+    }
+  }
+  if (count == 0) return residual;
   for (int v = 0; v < nv; ++v) {
     if (mesh.isIsolated(v)) continue;
-    const Vec3& y = mesh.position(v);
+    const Vec3& y = positions[v];
     double nearest = -1;
     // The faces around each neighbour: v's two-ring.
     for (int u : mesh.neighbors(v)) {
@@ -249,16 +267,25 @@ PlanarNoise planarNoise(const Mesh& mesh) {
         if (!confirmed[f]) return;
         const Face& c = mesh.face(f);
         if (c[0] == v || c[1] == v || c[2] == v) return;
-        const double d = std::abs((y - mesh.position(c[0])).dot(normal[f]));
+        const double d = std::abs((y - positions[c[0]]).dot(normal[f]));
         if (nearest < 0 || d < nearest) nearest = d;
       });
     }
-    if (nearest < 0) continue;
-    sum += nearest * nearest;
-    ++read;
+    residual[v] = nearest;
   }
-  out.samples = read;
-  if (read > 0) out.level = std::sqrt(sum / read) / averageEdgeLength(mesh);
+  return residual;
+}
+
+PlanarNoise planarNoise(const Mesh& mesh) {
+  PlanarNoise out;
+  const std::vector<double> residual = planarResiduals(mesh, mesh.positions(), &out.confirmedShare);
+  double sum = 0;
+  for (double r : residual)
+    if (r >= 0) {
+      sum += r * r;
+      ++out.samples;
+    }
+  if (out.samples > 0) out.level = std::sqrt(sum / out.samples) / averageEdgeLength(mesh);
   return out;
 }
 

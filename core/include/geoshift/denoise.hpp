@@ -176,6 +176,13 @@ struct DenoiseOptions {
   // against those planes instead, ranked with levelLean (docs/denoising.md#the-noise-level, "Planes
   // left untouched"). 0: never.
   double planarLevelShare = 0.5;
+  // After the impulse correction, on a part of flat faces (the input confirms at least
+  // planarLevelShare of its faces, planarNoise in noise.hpp), a vertex the noise left where it was
+  // keeps its input position: one within planarKeep × the noise level of the nearest untouched
+  // plane of its two-ring, in the plane of the face across the edge opposite it in one of its faces,
+  // and each of whose faces off its neighbours' planes holds another vertex that does not fit so
+  // (docs/denoising.md#impulsive-noise, "Vertices on untouched planes"). 0: never.
+  double planarKeep = 0;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the
@@ -247,6 +254,7 @@ struct DenoiseResult {
   bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)
   bool keptInput = false;       // no candidate ranked below the input: returned as it was (inputCandidate)
   bool planarLevel = false;     // the level was read against the planes the noise left (planarLevelShare)
+  int planarKept = 0;           // vertices the impulse correction had moved, back at their input positions (planarKeep)
   // The candidates blended in (blendSpread), each with its weight in the mix it joined (0: none;
   // then the other fields are 0): `blend`, the other family's, mixed with the winner; `startBlend`,
   // the other start's, mixed with that. The result is (1 − s) ((1 − b) x_W + b x_O) + s x_S for the

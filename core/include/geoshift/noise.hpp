@@ -86,6 +86,12 @@ struct PlanarNoise {
   int samples = 0;            // vertices read
 };
 PlanarNoise planarNoise(const Mesh& mesh);
+// Its parts, for the mesh's connectivity at the given positions: each vertex's distance to the
+// nearest plane of a confirmed face of its two-ring not touching it (−1 where there is none); if
+// asked for, the confirmed faces' share, which faces are confirmed, and which vertices lie in the
+// plane of the face across the edge opposite them in one of their faces (within the same 1°).
+std::vector<double> planarResiduals(const Mesh& mesh, const std::vector<Vec3>& positions, double* confirmedShare = nullptr,
+                                    std::vector<char>* confirmedFaces = nullptr, std::vector<char>* inPlane = nullptr);
 
 double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel = {});  // its level
 
