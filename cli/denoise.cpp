@@ -96,6 +96,8 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
       line << (o.impulseKurtosis > 0 ? "; the noise looks impulsive: outliers" : "; outliers (--impulse on)")
            << " corrected, the other vertices mostly kept (kurtosis " << r.displacementKurtosis << " of the displacement, "
            << r.spectrumKurtosis << " of the highest frequencies)";
+    // docs/denoising.md#impulsive-noise ("Vertices on untouched planes")
+    if (r.planarKept > 0) line << "; " << r.planarKept << " vertices on untouched planes kept at their input positions";
   }
   line << ", " << r.threads << " threads";
   // docs/denoising.md#speed-and-memory (spatial order)

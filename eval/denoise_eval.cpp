@@ -309,6 +309,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
          << (o.fixedPasses > 0 ? " (fixed)" : "")
          << blended(", blended ", r.blend) << blended(", then ", r.startBlend)
          << (r.impulseGarrote ? ", impulse garrote (kurtosis " + fixed(r.displacementKurtosis, 1) + ", spectrum " + fixed(r.spectrumKurtosis, 1) + ")" : "")
+         << (r.planarKept > 0 ? ", " + std::to_string(r.planarKept) + " kept on planes" : "")
          << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe") +
                                    (r.tieByNormals ? ", by normals" : "")
                              : "")

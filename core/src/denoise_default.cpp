@@ -51,6 +51,8 @@ void validate(const DenoiseOptions& o) {
     bad("Taubin-only margin must be >= 0 (got " + std::to_string(o.taubinOnlyMargin) + ")");
   if (o.maxPasses < 1 || o.maxPasses > 10000) bad("maximum passes must be in [1, 10000] (got " + std::to_string(o.maxPasses) + ")");
   if (o.patience < 1) bad("patience must be at least 1 (got " + std::to_string(o.patience) + ")");
+  if (!(o.planarKeep >= 0 && o.planarKeep <= 1))
+    bad("planar keep must be in [0, 1] (got " + std::to_string(o.planarKeep) + ")");
   if (!(o.planarLevelShare >= 0 && o.planarLevelShare <= 1))
     bad("planar level share must be in [0, 1] (got " + std::to_string(o.planarLevelShare) + ")");
   if (o.highFrequencyMinSamples < 0)

@@ -146,6 +146,7 @@ class DenoiseOptions:
     level_lean: float
     high_frequency_min_samples: int
     planar_level_share: float
+    planar_keep: float
     halving_race: bool
     impulse_kurtosis: float
     impulse_shrink: float
@@ -173,7 +174,8 @@ class DenoiseOptions:
                  tie_by_normals: bool = True, input_candidate: bool = True, spatial_order: bool = True,
                  refine_noise: bool = True,
                  detail_bound_ratio: float = 0.9, high_frequency_level: bool = True, level_lean: float = 1.1,
-                 high_frequency_min_samples: int = 50, planar_level_share: float = 0.5, halving_race: bool = True,
+                 high_frequency_min_samples: int = 50, planar_level_share: float = 0.5,
+                 planar_keep: float = 0.1, halving_race: bool = True,
                  impulse_kurtosis: float = 6.0, impulse_shrink: float = 2.0,
                  impulse_spectrum_kurtosis: float = 5.5, impulse_spectrum_min_samples: int = 100,
                  impulse_spectrum_veto: float = 4.0,

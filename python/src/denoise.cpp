@@ -79,6 +79,7 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["impulse_garrote"] = r.impulseGarrote;
     out["kept_input"] = r.keptInput;
     out["planar_level"] = r.planarLevel;
+    out["planar_kept"] = r.planarKept;
     out["blend_weight"] = r.blend.weight;
     out["blend_steps"] = r.blend.presmoothingSteps;
     out["blend_passes"] = r.blend.passes;

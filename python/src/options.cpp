@@ -231,6 +231,7 @@ void bindOptions(py::module_& m) {
       .def_readwrite("level_lean", &DenoiseOptions::levelLean)
       .def_readwrite("high_frequency_min_samples", &DenoiseOptions::highFrequencyMinSamples)
       .def_readwrite("planar_level_share", &DenoiseOptions::planarLevelShare)
+      .def_readwrite("planar_keep", &DenoiseOptions::planarKeep)
       .def_readwrite("halving_race", &DenoiseOptions::halvingRace)
       .def_readwrite("impulse_kurtosis", &DenoiseOptions::impulseKurtosis)
       .def_readwrite("impulse_shrink", &DenoiseOptions::impulseShrink)

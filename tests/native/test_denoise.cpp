@@ -527,6 +527,34 @@ TEST_CASE("a part of flat faces is measured against its planes where the spectru
   REQUIRE(rb.noiseLevel != Approx(planar.level).epsilon(1e-3));
 }
 
+// docs/denoising.md#impulsive-noise ("Vertices on untouched planes"): sparse outliers on a box. After
+// the correction, every vertex back at its input position is one the noise did not move, and the
+// result is closer to the box than without the rule.
+TEST_CASE("after the impulse correction, vertices on untouched planes keep their input positions",
+          "[denoise][impulsive]") {
+  const Mesh box = build(shapes::box(12, 12, 12));
+  const Mesh noisy = withNoise(box, 0.5, 4, NoiseDistribution::Impulsive);
+  Mesh with = noisy, without = noisy;
+  const DenoiseResult r = denoise(with);
+  REQUIRE(r.impulseGarrote);
+  REQUIRE(r.planarKept > 0);
+  DenoiseOptions off;
+  off.planarKeep = 0;
+  const DenoiseResult r0 = denoise(without, off);
+  REQUIRE(r0.planarKept == 0);
+  int back = 0, untouched = 0;
+  for (int v = 0; v < noisy.vertexCount(); ++v) {
+    untouched += noisy.position(v) == box.position(v);
+    if (with.position(v) != noisy.position(v) || without.position(v) == noisy.position(v)) continue;
+    ++back;
+    INFO("vertex " << v);
+    REQUIRE(noisy.position(v) == box.position(v));
+  }
+  INFO(back << " back of " << untouched << " untouched");
+  REQUIRE(back == r.planarKept);
+  REQUIRE(rmsTo(with, box) < rmsTo(without, box));
+}
+
 TEST_CASE("default denoising gives the same bits for any thread count", "[denoise][threads]") {
   const Mesh noisy = withNoise(build(shapes::box(10, 8, 6)), 0.5, 4, NoiseDistribution::Uniform);
   Mesh one = noisy, two = noisy;
@@ -987,6 +1015,8 @@ TEST_CASE("denoise rejects bad options and cancels without touching the mesh", "
   refuses([](DenoiseOptions& o) { o.planarLevelShare = -0.1; }, "negative planar level share");
   refuses([](DenoiseOptions& o) { o.planarLevelShare = 1.5; }, "planar level share above 1");
   refuses([](DenoiseOptions& o) { o.planarLevelShare = std::nan(""); }, "NaN planar level share");
+  refuses([](DenoiseOptions& o) { o.planarKeep = -0.1; }, "negative planar keep");
+  refuses([](DenoiseOptions& o) { o.planarKeep = std::nan(""); }, "NaN planar keep");
   refuses([](DenoiseOptions& o) { o.gradientRiskWeight = std::nan(""); }, "NaN gradient risk weight");
   refuses([](DenoiseOptions& o) { o.levelLean = std::nan(""); }, "NaN level lean");
   refuses([](DenoiseOptions& o) { o.minPieceVertices = -1; }, "negative smallest piece");

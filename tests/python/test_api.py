@@ -325,11 +325,13 @@ def test_denoise_keeps_a_clean_coarse_part_measured_against_its_planes():
     box = _box_surface(5)
     kept = geoshift.denoise(box)
     assert kept.stats["planar_level"] is True and kept.stats["kept_input"] is True
+    assert kept.stats["planar_kept"] == 0
     np.testing.assert_array_equal(kept.mesh.positions, box.positions)
     moved = geoshift.denoise(box, planar_level_share=0)
     assert moved.stats["planar_level"] is False
     assert not np.array_equal(moved.mesh.positions, box.positions)
     assert geoshift.DenoiseOptions().planar_level_share == 0.5
+    assert geoshift.DenoiseOptions().planar_keep == 0.1
 
 
 def test_denoise_takes_the_risk_estimate_options(terrain):

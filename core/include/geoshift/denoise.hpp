@@ -182,7 +182,7 @@ struct DenoiseOptions {
   // plane of its two-ring, in the plane of the face across the edge opposite it in one of its faces,
   // and each of whose faces off its neighbours' planes holds another vertex that does not fit so
   // (docs/denoising.md#impulsive-noise, "Vertices on untouched planes"). 0: never.
-  double planarKeep = 0;
+  double planarKeep = 0.1;
   // The race keeps the better half of its runs every `patience` passes (docs/denoising.md#the-race).
   bool halvingRace = true;
   // Impulsive noise (a few vertices moved far, the rest not at all): when the kurtosis of the
