@@ -216,6 +216,10 @@ HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& p
   return {std::sqrt(measured / expected) / averageEdgeLength(mesh), fourth / count / (meanSquare * meanSquare), count};
 }
 
+double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel) {
+  return highFrequencyNoise(mesh, parallel).level;
+}
+
 std::vector<double> planarResiduals(const Mesh& mesh, const std::vector<Vec3>& positions, double* confirmedShare,
                                     std::vector<char>* confirmedFaces, std::vector<char>* inPlane) {
   // docs/denoising.md#noise-estimate ("Planes left untouched").
@@ -287,10 +291,6 @@ PlanarNoise planarNoise(const Mesh& mesh) {
     }
   if (out.samples > 0) out.level = std::sqrt(sum / out.samples) / averageEdgeLength(mesh);
   return out;
-}
-
-double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel) {
-  return highFrequencyNoise(mesh, parallel).level;
 }
 
 }  // namespace geoshift

@@ -72,6 +72,13 @@ struct HighFrequencyNoise {
   int samples = 0;  // the vertices read: those three rings from any crease, boundary or isolated vertex
 };
 HighFrequencyNoise highFrequencyNoise(const Mesh& mesh, const ParallelOptions& parallel = {});
+double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel = {});  // its level
+
+// Its parts: the sampled vertices (interior, not isolated, evenly spread over the index range), and
+// the residual variance of the quadric fitted to each one's two-ring (−1 where unusable).
+std::vector<int> noiseSampleVertices(const Mesh& mesh, int maxSamples = 40000);
+std::vector<double> quadricResidualVariances(const Mesh& mesh, const std::vector<int>& vertices);
+
 // The noise level read against the mesh's own planes (docs/denoising.md#noise-estimate, "Planes
 // left untouched"), for meshes of flat faces whose noise left most faces where they were (sparse,
 // impulsive noise on a CAD part): a face is *confirmed* when a face across one of its edges lies in
@@ -92,12 +99,5 @@ PlanarNoise planarNoise(const Mesh& mesh);
 // plane of the face across the edge opposite them in one of their faces (within the same 1°).
 std::vector<double> planarResiduals(const Mesh& mesh, const std::vector<Vec3>& positions, double* confirmedShare = nullptr,
                                     std::vector<char>* confirmedFaces = nullptr, std::vector<char>* inPlane = nullptr);
-
-double highFrequencyNoiseLevel(const Mesh& mesh, const ParallelOptions& parallel = {});  // its level
-
-// Its parts: the sampled vertices (interior, not isolated, evenly spread over the index range), and
-// the residual variance of the quadric fitted to each one's two-ring (−1 where unusable).
-std::vector<int> noiseSampleVertices(const Mesh& mesh, int maxSamples = 40000);
-std::vector<double> quadricResidualVariances(const Mesh& mesh, const std::vector<int>& vertices);
 
 }  // namespace geoshift
