@@ -35,6 +35,10 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("tieByNormals", r.tieByNormals ? "yes" : "no");
       out.stats.set("estimatedError", r.estimatedError);
       out.stats.set("impulseGarrote", r.impulseGarrote ? "yes" : "no");
+      // docs/denoising.md#the-noise-level ("Planes left untouched") and #impulsive-noise ("Vertices
+      // on untouched planes")
+      out.stats.set("planarLevel", r.planarLevel ? "yes" : "no");
+      out.stats.set("planarKept", r.planarKept);
       out.stats.set("keptInput", r.keptInput ? "yes" : "no");
       out.stats.set("blendWeight", r.blend.weight);
       out.stats.set("blendSteps", r.blend.presmoothingSteps);

@@ -71,6 +71,31 @@ test('the impulse correction is named after the tie', async () => {
     ' impulsive noise: only the outliers moved');
 });
 
+test('a level read against the flat faces the noise left is named next to the recipe, before the tie', async () => {
+  assert.equal(await chosen({ ...PASSES, planarLevel: 'yes' }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35; noise level read against the flat faces the noise left');
+  assert.equal(await chosen({ ...PASSES, planarLevel: 'yes', blendWeight: 0.314, blendSteps: 12, blendPasses: 0,
+    blendTaubinOnly: 'yes', tieProbes: 1, impulseGarrote: 'yes' }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35, blended with 12 Taubin steps alone (31% of the weight);' +
+    ' noise level read against the flat faces the noise left; a close call between two starts, settled by 1 more probe;' +
+    ' impulsive noise: only the outliers moved');
+  // 'no', or a stat the op did not send, says nothing of it.
+  assert.equal(await chosen({ ...PASSES, planarLevel: 'no' }), '15 Taubin steps + 2 passes at Keep edges 0.35');
+});
+
+test('vertices on untouched planes put back after the impulse correction are counted, in the singular where one', async () => {
+  const impulsive = { ...PASSES, impulseGarrote: 'yes' };
+  assert.equal(await chosen({ ...impulsive, planarKept: 1 }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35; impulsive noise: only the outliers moved;' +
+    ' 1 vertex on an untouched plane kept as it was');
+  assert.equal(await chosen({ ...impulsive, planarLevel: 'yes', planarKept: 1234, keptPieces: 1, keptVertices: 3 }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35; noise level read against the flat faces the noise left;' +
+    ' impulsive noise: only the outliers moved; 1,234 vertices on untouched planes kept as they were; 1 small piece left as it was');
+  assert.equal(await chosen({ ...impulsive, planarKept: 0 }),
+    '15 Taubin steps + 2 passes at Keep edges 0.35; impulsive noise: only the outliers moved');
+  assert.equal(await chosen(impulsive), '15 Taubin steps + 2 passes at Keep edges 0.35; impulsive noise: only the outliers moved');
+});
+
 test('pieces too small to denoise are counted last, in the singular where one', async () => {
   assert.equal(await chosen({ ...PASSES, keptPieces: 1, keptVertices: 4 }),
     '15 Taubin steps + 2 passes at Keep edges 0.35; 1 small piece left as it was');
@@ -85,6 +110,12 @@ test('a mesh left as it was says so, with no recipe, and still counts its small 
   assert.equal(await chosen({ ...kept, tieProbes: 2, keptPieces: 2, keptVertices: 8 }),
     'left as it was: no smoothing is estimated to bring it closer to the noise-free surface; 2 small pieces left as they were');
   assert.equal(await chosen({ ...PASSES, keptInput: 'no' }), '15 Taubin steps + 2 passes at Keep edges 0.35');
+  // A clean part of flat faces is kept because of the level read against its planes.
+  assert.equal(await chosen({ ...kept, planarLevel: 'yes', planarKept: 0 }),
+    'left as it was: no smoothing is estimated to bring it closer to the noise-free surface' +
+    ' (noise level read against the flat faces the noise left)');
+  assert.equal(await chosen({ ...kept, planarLevel: 'no' }),
+    'left as it was: no smoothing is estimated to bring it closer to the noise-free surface');
 });
 
 test('stats of another filter or of the paper preset have no Chosen row', async () => {

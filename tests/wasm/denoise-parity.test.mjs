@@ -1,13 +1,15 @@
 // run(handle, 'denoise', ...) agrees with `geoshift denoise` (to 1e-5 relative) on a small noisy box
 // for every method, brings the box back toward its flat sides, gives the same bits for any thread
-// count, and refuses bad parameters with messages that name them.
+// count, reports what the CLI reports of the planes sparse outliers leave untouched, and refuses bad
+// parameters with messages that name them.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 
-import { loadGeoshift, scratchDir } from './support.mjs';
+import { loadGeoshift, nativeCli, scratchDir } from './support.mjs';
 import { assertClose, box, jiggle, runNative, sameBits, writeCoff } from './filter-support.mjs';
 
 let geoshift;
@@ -121,6 +123,62 @@ test('impulse "on" corrects outliers under dense noise as `geoshift denoise --im
   assert.ok(sameBits(never.positions, auto.positions), 'off differs from auto where auto does not fire');
   assert.ok(!sameBits(on.positions, auto.positions), 'on changed nothing');
   assertClose(assert, on.positions, runNative(dir, 'denoise', off, ['--impulse', 'on'])('POSITION'), 'positions');
+});
+
+// The box with two vertices inside each side pushed along the side's normal (one out by half an edge,
+// one in by 0.3 of an edge), every other vertex where it was: sparse outliers on flat faces, where
+// the spectrum reads too few vertices (docs/denoising.md#the-noise-level, "Planes left untouched").
+function withOutliers(n) {
+  const mesh = box(n);
+  const positions = Float32Array.from(mesh.positions);
+  const edge = 2 / n;
+  for (let v = 0; v < positions.length / 3; ++v) {
+    const p = positions.subarray(3 * v, 3 * v + 3);
+    const sides = [0, 1, 2].filter((c) => Math.abs(p[c]) === 1);
+    if (sides.length !== 1) continue;  // on an edge of the box, shared by two sides
+    const c = sides[0];
+    const [i, j] = [(c + 1) % 3, (c + 2) % 3].map((a) => Math.round((p[a] + 1) / edge));
+    if (i === 2 && j === 2) p[c] += Math.sign(p[c]) * 0.5 * edge;
+    else if (i === n - 2 && j === n - 3) p[c] -= Math.sign(p[c]) * 0.3 * edge;
+  }
+  return { ...mesh, positions };
+}
+
+// `geoshift denoise IN ARGS...`'s report line (its standard error).
+function nativeReport(input, args = []) {
+  const glb = path.join(dir, `${path.basename(input, '.off')}-report.glb`);
+  const run = spawnSync(nativeCli, ['denoise', input, '-o', glb, ...args], { encoding: 'utf8' });
+  assert.equal(run.status, 0, run.stderr || String(run.error));
+  return run.stderr;
+}
+
+test('sparse outliers on a box: the level read against the untouched planes and the vertices on them kept, as the CLI reports', () => {
+  // docs/denoising.md#impulsive-noise ("Vertices on untouched planes")
+  const spiky = withOutliers(6);
+  const off = path.join(dir, 'box-outliers.off');
+  writeCoff(off, spiky);
+  const r = denoised(geoshift, {}, spiky);
+  assertClose(assert, r.positions, runNative(dir, 'denoise', off, [])('POSITION'), 'positions');
+  const report = nativeReport(off);
+  assert.equal(r.stats.impulseGarrote, 'yes', JSON.stringify(r.stats));
+  assert.equal(r.stats.planarLevel, 'yes', JSON.stringify(r.stats));
+  assert.match(report, /estimated from the mesh, against the planes the noise left/);
+  const kept = report.match(/; (\d+) vertices on untouched planes kept at their input positions/);
+  assert.ok(kept, report);
+  assert.ok(r.stats.planarKept > 0, JSON.stringify(r.stats));
+  assert.equal(r.stats.planarKept, Number(kept[1]));
+});
+
+test('dense noise reads no level against planes and keeps no vertex on them, with the impulse correction on too', () => {
+  const off = path.join(dir, 'box-dense.off');
+  writeCoff(off, noisy);
+  for (const [params, cli] of [[{}, []], [{ impulse: 'on' }, ['--impulse', 'on']]]) {
+    const r = denoised(geoshift, params);
+    assert.equal(r.stats.planarLevel, 'no', JSON.stringify(r.stats));
+    assert.equal(r.stats.planarKept, 0, JSON.stringify(r.stats));
+    const report = nativeReport(off, cli);
+    assert.doesNotMatch(report, /against the planes|untouched planes/);
+  }
 });
 
 test('a piece too small to denoise keeps its positions and the box is denoised as alone; minPiece 0 as --min-piece 0', () => {

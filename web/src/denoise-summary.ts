@@ -6,19 +6,27 @@ import { counted } from './words';
 /** The stats of one mesh's run: the op's named numbers and strings. */
 export type DenoiseStats = Readonly<Record<string, number | string | undefined>>;
 
+// docs/denoising.md#the-noise-level ("Planes left untouched")
+const PLANAR_LEVEL = 'noise level read against the flat faces the noise left';
+
 /**
  * "15 Taubin steps + 2 passes at Keep edges 0.35", "27 Taubin steps alone (no pass)" or that the mesh
- * was left as it was, with the candidates blended in, what decided a close call between the starts, whether only outliers were
- * moved and how many pieces too small to denoise were left as they were; null for stats
- * that are not the default denoiser's (another filter, the paper preset).
+ * was left as it was, with the candidates blended in, whether the noise level was read against the
+ * flat faces the noise left, what decided a close call between the starts, whether only outliers were
+ * moved, how many vertices that correction moved were put back because they lie on untouched planes,
+ * and how many pieces too small to denoise were left as they were; null for stats that are not the
+ * default denoiser's (another filter, the paper preset).
  */
 export function chosenSummary(stats: DenoiseStats): string | null {
   const steps = stats.presmoothingSteps;
   const passes = stats.passes;
   if (typeof steps !== 'number' || typeof passes !== 'number' || typeof stats.noiseLevel !== 'number') return null;
   // docs/denoising.md#the-input-as-a-candidate
-  if (stats.keptInput === 'yes')
-    return withKeptPieces('left as it was: no smoothing is estimated to bring it closer to the noise-free surface', stats);
+  if (stats.keptInput === 'yes') {
+    // A clean part of flat faces is kept because its level, read against its planes, is nearly 0.
+    const reading = stats.planarLevel === 'yes' ? ` (${PLANAR_LEVEL})` : '';
+    return withKeptPieces(`left as it was: no smoothing is estimated to bring it closer to the noise-free surface${reading}`, stats);
+  }
   let text = stats.taubinOnly === 'yes' ? `${recipe(steps, passes, true)} (no pass)` : recipe(steps, passes, false);
   if (stats.taubinOnly !== 'yes' && typeof stats.rangeBandwidth === 'number' && stats.rangeBandwidth > 0)
     text += ` at Keep edges ${stats.rangeBandwidth}`;
@@ -28,6 +36,8 @@ export function chosenSummary(stats: DenoiseStats): string | null {
   if (other) text += `, blended with ${other}`;
   const start = blendedIn(stats.startBlendWeight, stats.startBlendSteps, stats.startBlendPasses, false);
   if (start) text += `, ${other ? 'then' : 'blended'} with ${start}`;
+  // Next to the recipe: the level it was chosen with.
+  if (stats.planarLevel === 'yes') text += `; ${PLANAR_LEVEL}`;
   // docs/denoising.md#ties-between-starts: more probes, and where they leave it open, the normals.
   const probes = stats.tieProbes;
   if (typeof probes === 'number' && probes > 0)
@@ -35,6 +45,12 @@ export function chosenSummary(stats: DenoiseStats): string | null {
       `; a close call between two starts, settled by ${counted(probes, 'more probe', 'more probes')}` +
       (stats.tieByNormals === 'yes' ? ' and then by the smoother normals' : '');
   if (stats.impulseGarrote === 'yes') text += '; impulsive noise: only the outliers moved';
+  // docs/denoising.md#impulsive-noise ("Vertices on untouched planes"): moved by the correction, put back.
+  const planarKept = stats.planarKept;
+  if (typeof planarKept === 'number' && planarKept > 0)
+    text +=
+      `; ${counted(planarKept, 'vertex on an untouched plane', 'vertices on untouched planes')}` +
+      ` kept as ${planarKept === 1 ? 'it was' : 'they were'}`;
   return withKeptPieces(text, stats);
 }
 
