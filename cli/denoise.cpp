@@ -97,9 +97,10 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
            << " corrected, the other vertices mostly kept (kurtosis " << r.displacementKurtosis << " of the displacement, "
            << r.spectrumKurtosis << " of the highest frequencies)";
     // docs/denoising.md#impulsive-noise ("Vertices on untouched planes")
-    if (r.planarKept > 0) line << "; " << r.planarKept << " vertices on untouched planes kept at their input positions";
+    if (r.planarKept == 1) line << "; 1 vertex on an untouched plane kept at its input position";
+    else if (r.planarKept > 1) line << "; " << r.planarKept << " vertices on untouched planes kept at their input positions";
   }
-  line << ", " << r.threads << " threads";
+  line << ", " << r.threads << (r.threads == 1 ? " thread" : " threads");
   // docs/denoising.md#speed-and-memory (spatial order)
   if (r.spatialOrder)
     line << ", run in spatial order (" << 100 * r.farAdjacencies << "% of the file's adjacencies lie far apart in it)";
