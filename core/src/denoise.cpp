@@ -28,7 +28,13 @@ DenoiseResult hybridOrPreset(Mesh& mesh, const DenoiseOptions& options, const Pr
   w.levels = options.levels;
   const Multiresolution mr = analyze(mesh, AttributeSet(mesh.vertexCount()), w, progress.slice(0, 0.05));
   Mesh coarse = mr.coarse;
-  DenoiseResult result = preset(coarse, options, progress.slice(0.05, 0.95));
+  // Candidates are handed out as the fine mesh they would give, each synthesized from its coarse one.
+  DenoiseOptions coarseOptions = options;
+  if (options.onCandidate)
+    coarseOptions.onCandidate = [&](int steps, int passes, const std::vector<Vec3>& x, double risk) {
+      options.onCandidate(steps, passes, synthesize(mr, x, mr.coarseAttributes, options.alpha).mesh.positions(), risk);
+    };
+  DenoiseResult result = preset(coarse, coarseOptions, progress.slice(0.05, 0.95));
   const SynthesisResult fine = synthesize(mr, coarse.positions(), mr.coarseAttributes, options.alpha, progress.slice(0.95, 1));
   mesh.positions() = fine.mesh.positions();
   result.filteredVertices = coarse.vertexCount();
@@ -74,7 +80,16 @@ DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress&
   DenoiseResult result;
   if (!faces.empty()) {
     Mesh rest(std::move(positions), faces);
-    result = hybridOrPreset(rest, options, progress);
+    // Candidates are handed out as the caller numbers the vertices, the small pieces where they are.
+    DenoiseOptions restOptions = options;
+    if (options.onCandidate)
+      restOptions.onCandidate = [&](int steps, int passes, const std::vector<Vec3>& x, double risk) {
+        std::vector<Vec3> full = mesh.positions();
+        for (int v = 0; v < mesh.vertexCount(); ++v)
+          if (restIndex[v] >= 0) full[v] = x[restIndex[v]];
+        options.onCandidate(steps, passes, full, risk);
+      };
+    result = hybridOrPreset(rest, restOptions, progress);
     for (int v = 0; v < mesh.vertexCount(); ++v)
       if (restIndex[v] >= 0) mesh.positions()[v] = rest.position(restIndex[v]);
   } else {

@@ -944,11 +944,16 @@ TEST_CASE("pieces too small to denoise keep their positions and do not change th
   for (auto [preset, levels] : {std::pair{DenoisePreset::Default, 0}, std::pair{DenoisePreset::Paper, 0},
                                 std::pair{DenoisePreset::Default, 1}}) {
     INFO((preset == DenoisePreset::Paper ? "paper" : "default") << ", levels " << levels);
-    DenoiseOptions o;
+    // Every candidate handed out, for the rest with the small pieces and for the ball alone.
+    std::vector<std::vector<Vec3>> seenAll, seenAlone;
+    DenoiseOptions o, oAlone;
     o.preset = preset;
     o.levels = levels;
+    oAlone = o;
+    o.onCandidate = [&](int, int, const std::vector<Vec3>& x, double) { seenAll.push_back(x); };
+    oAlone.onCandidate = [&](int, int, const std::vector<Vec3>& x, double) { seenAlone.push_back(x); };
     Mesh alone = ball, m = all;
-    const DenoiseResult ra = denoise(alone, o), r = denoise(m, o);
+    const DenoiseResult ra = denoise(alone, oAlone), r = denoise(m, o);
     REQUIRE(r.keptPieces == 2);
     REQUIRE(r.keptVertices == 7);
     REQUIRE(ra.keptPieces == 0);
@@ -957,6 +962,16 @@ TEST_CASE("pieces too small to denoise keep their positions and do not change th
     for (int v = 0; v < nb; ++v) REQUIRE(m.position(v) == alone.position(v));
     for (int v = nb; v < nb + 7; ++v) REQUIRE(m.position(v) == all.position(v));
     REQUIRE(r.passesRun == ra.passesRun);
+    // The candidates come as the caller numbers the whole mesh (with levels, synthesized to it):
+    // the ball's part as if alone, the small pieces where they were.
+    REQUIRE(seenAll.size() == seenAlone.size());
+    if (preset == DenoisePreset::Default) REQUIRE(seenAll.size() > 4);
+    for (size_t i = 0; i < seenAll.size(); ++i) {
+      REQUIRE(seenAll[i].size() == static_cast<size_t>(all.vertexCount()));
+      REQUIRE(seenAlone[i].size() == static_cast<size_t>(nb));
+      for (int v = 0; v < nb; ++v) REQUIRE(seenAll[i][v] == seenAlone[i][v]);
+      for (int v = nb; v < nb + 7; ++v) REQUIRE(seenAll[i][v] == all.position(v));
+    }
   }
 
   // Denoised with the rest (minPieceVertices 0), the tetrahedron is taken for noise: it shrinks.

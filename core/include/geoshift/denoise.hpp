@@ -216,7 +216,9 @@ struct DenoiseOptions {
   double impulseSpectrumVeto = 4;
   int threads = 0;          // 0: all hardware threads; results do not depend on it
   // Called for every candidate scored, with its Taubin steps, passes, positions and unbiased risk
-  // (mean squared error along the normals): for evaluations and diagnostics.
+  // (mean squared error along the normals): for evaluations and diagnostics. The positions are the
+  // whole mesh's in the caller's vertex order: small pieces at their input positions, and with
+  // levels > 0 the fine mesh synthesized from the coarse candidate.
   std::function<void(int steps, int passes, const std::vector<Vec3>& positions, double risk)> onCandidate;
 
   // --- Paper preset ---
