@@ -80,18 +80,21 @@ DenoiseResult denoise(Mesh& mesh, const DenoiseOptions& options, const Progress&
   DenoiseResult result;
   if (!faces.empty()) {
     Mesh rest(std::move(positions), faces);
-    // Candidates are handed out as the caller numbers the vertices, the small pieces where they are.
+    // The rest's positions back into the caller's numbering; the small pieces keep theirs.
+    auto putBack = [&](std::vector<Vec3>& into, const std::vector<Vec3>& ofRest) {
+      for (int v = 0; v < mesh.vertexCount(); ++v)
+        if (restIndex[v] >= 0) into[v] = ofRest[restIndex[v]];
+    };
+    // Candidates are handed out the same way, as the whole mesh.
     DenoiseOptions restOptions = options;
     if (options.onCandidate)
       restOptions.onCandidate = [&](int steps, int passes, const std::vector<Vec3>& x, double risk) {
         std::vector<Vec3> full = mesh.positions();
-        for (int v = 0; v < mesh.vertexCount(); ++v)
-          if (restIndex[v] >= 0) full[v] = x[restIndex[v]];
+        putBack(full, x);
         options.onCandidate(steps, passes, full, risk);
       };
     result = hybridOrPreset(rest, restOptions, progress);
-    for (int v = 0; v < mesh.vertexCount(); ++v)
-      if (restIndex[v] >= 0) mesh.positions()[v] = rest.position(restIndex[v]);
+    putBack(mesh.positions(), rest.positions());
   } else {
     result.threads = resolveThreads(options.threads);
   }
