@@ -14,7 +14,9 @@
 namespace geoshift::eval {
 
 // Broad: tuning cases only, reported apart (docs/denoising.md#the-evaluation, "The broad tuning set").
-enum class Set { Tuning, Validation, Broad };
+// Holdout: held out from every choice, validation's included; reported apart, run only as a record
+// (docs/denoising.md#the-evaluation, "The holdout set").
+enum class Set { Tuning, Validation, Broad, Holdout };
 const char* setName(Set s);
 
 // A clean mesh. Meshes of one family (the same object at two resolutions, with and without holes)
@@ -26,6 +28,7 @@ struct MeshEntry {
   bool seen = false;     // played a part in choosing earlier defaults: tuning set, whatever the hash
   bool broad = false;    // of the broad tuning set: never validation
   std::function<Mesh()> load;  // the clean mesh, any scale
+  bool holdout = false;  // of the holdout set: never tuning, never validation
 };
 
 // The noise of one synthetic case.
@@ -52,6 +55,17 @@ std::vector<MeshEntry> cleanMeshes(const std::filesystem::path& data);
 // unpacks them); none when `dir` does not exist (a note on stderr says how to fetch them), and a
 // note for each listed file that is missing.
 std::vector<MeshEntry> broadMeshes(const std::filesystem::path& dir);
+
+// The holdout set's meshes, read from the same folder as the broad set's (CGAL's small demo meshes),
+// each split in four until it has at least holdoutMinVertices vertices; none when `dir` does not
+// exist, and a note for each listed file that is missing.
+inline constexpr int holdoutMinVertices = 3000;
+std::vector<MeshEntry> holdoutMeshes(const std::filesystem::path& dir);
+
+// Every triangle split in four at its edges' midpoints (a midpoint shared by the edge's faces); the
+// input's vertices keep their indices, the midpoints follow. The surface does not move: every new
+// triangle lies in its parent's plane.
+Mesh splitInFour(const Mesh& mesh);
 
 // The split, decided by names alone before any result was seen: families already used to choose
 // earlier defaults go to tuning, the broad set's to broad; within each category the other

@@ -426,7 +426,12 @@ std::string report(Set set, const std::vector<Result>& results, const std::vecto
   std::vector<const Result*> rows;
   for (const Result& r : results)
     if (r.c->set == set) rows.push_back(&r);
-  s << "## " << (set == Set::Tuning ? "Tuning set" : set == Set::Validation ? "Validation set" : "Broad tuning set") << " ("
+  s << "## "
+    << (set == Set::Tuning       ? "Tuning set"
+        : set == Set::Validation ? "Validation set"
+        : set == Set::Broad      ? "Broad tuning set"
+                                 : "Holdout set")
+    << " ("
     << rows.size() << " cases)\n\n";
   if (rows.empty()) return s.str();
   s << "RMS ×10² / mean normal error (°); oracles tuned per case on the truth; geoshift with its defaults, probe seed "
@@ -542,8 +547,9 @@ int usage(const char* error) {
   if (error) std::cerr << "denoise_eval: " << error << "\n";
   std::cerr
       << "usage: denoise_eval [options]\n"
-         "  --set tuning|validation|broad|all   which cases (default all: tuning and validation); choose defaults on\n"
-         "                     tuning (and broad, more tuning cases: CGAL's demo meshes, scripts/eval-data.sh) alone\n"
+         "  --set tuning|validation|broad|holdout|all   which cases (default all: tuning and validation); choose\n"
+         "                     defaults on tuning (and broad, more tuning cases: CGAL's demo meshes, scripts/eval-data.sh)\n"
+         "                     alone; holdout (CGAL's small demo meshes split in four) is a record, never a choice\n"
          "  --mesh SUBSTRING   only cases whose mesh name contains SUBSTRING (case-insensitive)\n"
          "  --pairs            only the ground-truth pairs\n"
          "  --quick            one pair and two small procedural meshes, as a smoke test\n"
@@ -689,8 +695,9 @@ int main(int argc, char** argv) {
       return usage(e.what());
     }
   }
-  if (setFilter != "all" && setFilter != "tuning" && setFilter != "validation" && setFilter != "broad")
-    return usage("--set takes tuning, validation, broad or all");
+  if (setFilter != "all" && setFilter != "tuning" && setFilter != "validation" && setFilter != "broad" &&
+      setFilter != "holdout")
+    return usage("--set takes tuning, validation, broad, holdout or all");
   if (!compare.empty()) {
     try {
       std::vector<CaseFigures> runs[2];
@@ -712,6 +719,9 @@ int main(int argc, char** argv) {
   // The broad set only where it is asked for: --set all stays the tuning and validation sets.
   if (setFilter == "broad" || splitOnly)
     for (MeshEntry& m : broadMeshes(broadData)) meshes.push_back(std::move(m));
+  // The holdout set likewise (docs/denoising.md, "The holdout set").
+  if (setFilter == "holdout" || splitOnly)
+    for (MeshEntry& m : holdoutMeshes(broadData)) meshes.push_back(std::move(m));
   const auto split = splitFamilies(meshes);
   auto setOf = [&](const std::string& family) {
     for (const auto& [f, s] : split)
@@ -719,14 +729,16 @@ int main(int argc, char** argv) {
     return Set::Tuning;
   };
   if (splitOnly) {
-    for (Set set : {Set::Tuning, Set::Validation, Set::Broad}) {
+    for (Set set : {Set::Tuning, Set::Validation, Set::Broad, Set::Holdout}) {
       std::cout << setName(set) << ":\n";
       for (const MeshEntry& m : meshes)
         if (setOf(m.family) == set) std::cout << "  " << m.name << " [" << m.family << "; " << m.category << (m.seen ? "; seen" : "") << "]\n";
     }
     return 0;
   }
-  auto wantedSet = [&](Set s) { return (setFilter == "all" && s != Set::Broad) || setFilter == setName(s); };
+  auto wantedSet = [&](Set s) {
+    return (setFilter == "all" && (s == Set::Tuning || s == Set::Validation)) || setFilter == setName(s);
+  };
   auto wanted = [&](const std::string& name) { return filter.empty() || lower(name).find(filter) != std::string::npos; };
 
   // Tasks: one per (clean mesh, noise) and one per pair; each builds its case when it runs.
@@ -863,7 +875,7 @@ int main(int argc, char** argv) {
     for (size_t k = 0; k < noiseSeeds.size(); ++k) md << (k ? ", " : " ") << noiseSeeds[k];
     md << " (the scoreboard's: 1; the pairs keep their own noise, counted with noise seed 1).\n\n";
   }
-  for (Set set : {Set::Validation, Set::Tuning, Set::Broad})
+  for (Set set : {Set::Validation, Set::Tuning, Set::Broad, Set::Holdout})
     if (wantedSet(set)) md << report(set, results, seeds, paper);
   std::cout << md.str();
   if (!markdownPath.empty()) {
