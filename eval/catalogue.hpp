@@ -56,9 +56,9 @@ std::vector<MeshEntry> cleanMeshes(const std::filesystem::path& data);
 // note for each listed file that is missing.
 std::vector<MeshEntry> broadMeshes(const std::filesystem::path& dir);
 
-// The holdout set's meshes, read from the same folder as the broad set's (CGAL's small demo meshes),
-// each split in four until it has at least holdoutMinVertices vertices; none when `dir` does not
-// exist, and a note for each listed file that is missing.
+// The holdout set's meshes, read from the same folder as the broad set's (CGAL's small demo meshes):
+// each twice, split in four and subdivided by Loop, until it has at least holdoutMinVertices
+// vertices; none when `dir` does not exist, and a note for each listed file that is missing.
 inline constexpr int holdoutMinVertices = 3000;
 std::vector<MeshEntry> holdoutMeshes(const std::filesystem::path& dir);
 
@@ -66,6 +66,13 @@ std::vector<MeshEntry> holdoutMeshes(const std::filesystem::path& dir);
 // input's vertices keep their indices, the midpoints follow. The surface does not move: every new
 // triangle lies in its parent's plane.
 Mesh splitInFour(const Mesh& mesh);
+
+// Loop's subdivision (Loop 1987; β = (5/8 − (3/8 + cos(2π/k)/4)²) / k at a vertex of k
+// neighbours): the connectivity of splitInFour, the positions smoothed. On a boundary the curve
+// rules (edge midpoints; a boundary vertex 3/4 itself and 1/8 each boundary neighbour); a vertex on
+// more than one boundary loop stays where it is. Every new position is a convex combination of old
+// ones, and the scheme commutes with affine maps.
+Mesh loopSubdivide(const Mesh& mesh);
 
 // The split, decided by names alone before any result was seen: families already used to choose
 // earlier defaults go to tuning, the broad set's to broad; within each category the other
