@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <span>
 #include <sstream>
 
 #include "geoshift/error.hpp"
@@ -115,18 +116,37 @@ std::vector<MeshEntry> cleanMeshes(const fs::path& data) {
   return out;
 }
 
-std::vector<MeshEntry> broadMeshes(const fs::path& dir) {
-  std::vector<MeshEntry> out;
+namespace {
+
+// A file of CGAL's demo folder as a set's rule lists it.
+struct Listed {
+  const char *stem, *family, *category;
+};
+
+// The listed files that are in `dir`, a note for each that is not, and none (with a note that says
+// how to fetch them) when the folder is absent.
+std::vector<std::pair<Listed, fs::path>> listedFiles(const fs::path& dir, const char* set, std::span<const Listed> listed) {
+  std::vector<std::pair<Listed, fs::path>> out;
   if (!fs::is_directory(dir)) {
-    std::cerr << "denoise_eval: the broad set's meshes are not in " << dir.string()
+    std::cerr << "denoise_eval: the " << set << " set's meshes are not in " << dir.string()
               << ": fetch them with scripts/eval-data.sh (or give --broad-data DIR)\n";
     return out;
   }
+  for (const Listed& l : listed) {
+    const fs::path p = dir / (std::string(l.stem) + ".off");
+    if (fs::exists(p))
+      out.push_back({l, p});
+    else
+      std::cerr << "denoise_eval: left out " << l.stem << " (CGAL): " << p.string() << " not found\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<MeshEntry> broadMeshes(const fs::path& dir) {
   // The rule of docs/denoising.md ("The broad tuning set"): file stem, family, category. Written
   // down from the files' names and sizes before any result on them was looked at.
-  struct Listed {
-    const char *stem, *family, *category;
-  };
   static const Listed listed[] = {
       {"ALSTOM_TEST4", "alstom test4", "CAD"},
       {"anchor_dense", "anchor", "CAD"},
@@ -173,15 +193,11 @@ std::vector<MeshEntry> broadMeshes(const fs::path& dir) {
       {"poly2x^2+y^2-0.062500", "poly2x2y2", "open or terrain"},
       {"three_peaks", "three peaks", "open or terrain"},
   };
-  for (const Listed& l : listed) {
-    const fs::path p = dir / (std::string(l.stem) + ".off");
-    if (!fs::exists(p)) {
-      std::cerr << "denoise_eval: left out " << l.stem << " (CGAL): " << p.string() << " not found\n";
-      continue;
-    }
-    MeshEntry m{std::string(l.stem) + " (CGAL)", std::string("cgal ") + l.family, l.category, false, true,
-                [p] { return fromFile(p); }};
-    out.push_back(std::move(m));
+  std::vector<MeshEntry> out;
+  for (const auto& [l, path] : listedFiles(dir, "broad", listed)) {
+    const fs::path p = path;  // a copy to capture (clang 14 captures no structured binding)
+    out.push_back({std::string(l.stem) + " (CGAL)", std::string("cgal ") + l.family, l.category, false, true,
+                   [p] { return fromFile(p); }});
   }
   return out;
 }
@@ -274,17 +290,8 @@ Mesh loopSubdivide(const Mesh& mesh) {
 }
 
 std::vector<MeshEntry> holdoutMeshes(const fs::path& dir) {
-  std::vector<MeshEntry> out;
-  if (!fs::is_directory(dir)) {
-    std::cerr << "denoise_eval: the holdout set's meshes are not in " << dir.string()
-              << ": fetch them with scripts/eval-data.sh (or give --broad-data DIR)\n";
-    return out;
-  }
   // The rule of docs/denoising.md ("The holdout set"): file stem, family, category. Written down
   // from the files' names and sizes before any result on them was looked at.
-  struct Listed {
-    const char *stem, *family, *category;
-  };
   static const Listed listed[] = {
       {"cube-meshed", "cube meshed", "CAD"},
       {"pinion", "pinion", "CAD"},
@@ -300,12 +307,9 @@ std::vector<MeshEntry> holdoutMeshes(const fs::path& dir) {
       {"patch-30", "patch 20 30", "open or terrain"},
       {"plane", "plane grid", "open or terrain"},
   };
-  for (const Listed& l : listed) {
-    const fs::path p = dir / (std::string(l.stem) + ".off");
-    if (!fs::exists(p)) {
-      std::cerr << "denoise_eval: left out " << l.stem << " (CGAL, split): " << p.string() << " not found\n";
-      continue;
-    }
+  std::vector<MeshEntry> out;
+  for (const auto& [l, path] : listedFiles(dir, "holdout", listed)) {
+    const fs::path p = path;  // a copy to capture (clang 14 captures no structured binding)
     // Split in four: the coarse polyhedron itself. Loop: a smooth surface through the same object,
     // one family with it (added after the split meshes' record: docs/denoising.md, "The holdout set").
     MeshEntry split{std::string(l.stem) + " (CGAL, split)", std::string("cgal ") + l.family, l.category, false, false,
