@@ -585,7 +585,7 @@ int usage(const char* error) {
          "                     changed, ratios, and a signed-rank test of the changes in RMS and normal error,\n"
          "                     over the cases and over the meshes)\n"
          "  --data DIR         the shared data folder (default ../shared/data of the repository)\n"
-         "  --broad-data DIR   the broad set's meshes (default build/eval-data/cgal-demo/meshes of the repository)\n";
+         "  --broad-data DIR   the broad and holdout sets' meshes (default build/eval-data/cgal-demo/meshes of the repository)\n";
   return error ? 2 : 0;
 }
 
