@@ -549,7 +549,7 @@ int usage(const char* error) {
       << "usage: denoise_eval [options]\n"
          "  --set tuning|validation|broad|holdout|all   which cases (default all: tuning and validation); choose\n"
          "                     defaults on tuning (and broad, more tuning cases: CGAL's demo meshes, scripts/eval-data.sh)\n"
-         "                     alone; holdout (CGAL's small demo meshes split in four) is a record, never a choice\n"
+         "                     alone; holdout (CGAL's small demo meshes, split in four and by Loop) is a record, never a choice\n"
          "  --mesh SUBSTRING   only cases whose mesh name contains SUBSTRING (case-insensitive)\n"
          "  --pairs            only the ground-truth pairs\n"
          "  --quick            one pair and two small procedural meshes, as a smoke test\n"
