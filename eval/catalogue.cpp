@@ -194,8 +194,10 @@ std::vector<MeshEntry> broadMeshes(const fs::path& dir) {
       {"three_peaks", "three peaks", "open or terrain"},
   };
   std::vector<MeshEntry> out;
-  for (const auto& [l, path] : listedFiles(dir, "broad", listed)) {
-    const fs::path p = path;  // a copy to capture (clang 14 captures no structured binding)
+  for (const auto& [listedFile, path] : listedFiles(dir, "broad", listed)) {
+    // Copies to capture: clang 14 captures no structured binding.
+    const Listed l = listedFile;
+    const fs::path p = path;
     out.push_back({std::string(l.stem) + " (CGAL)", std::string("cgal ") + l.family, l.category, false, true,
                    [p] { return fromFile(p); }});
   }
@@ -308,25 +310,24 @@ std::vector<MeshEntry> holdoutMeshes(const fs::path& dir) {
       {"plane", "plane grid", "open or terrain"},
   };
   std::vector<MeshEntry> out;
-  for (const auto& [l, path] : listedFiles(dir, "holdout", listed)) {
-    const fs::path p = path;  // a copy to capture (clang 14 captures no structured binding)
+  for (const auto& [listedFile, path] : listedFiles(dir, "holdout", listed)) {
+    // Copies to capture: clang 14 captures no structured binding.
+    const Listed l = listedFile;
+    const fs::path p = path;
     // Split in four: the coarse polyhedron itself. Loop: a smooth surface through the same object,
     // one family with it (added after the split meshes' record: docs/denoising.md, "The holdout set").
-    MeshEntry split{std::string(l.stem) + " (CGAL, split)", std::string("cgal ") + l.family, l.category, false, false,
-                    [p] {
-                      Mesh mesh = fromFile(p);
-                      while (mesh.vertexCount() < holdoutMinVertices) mesh = splitInFour(mesh);
-                      return mesh;
-                    }};
-    MeshEntry loop{std::string(l.stem) + " (CGAL, Loop)", std::string("cgal ") + l.family, "smooth by Loop", false, false,
-                   [p] {
-                     Mesh mesh = fromFile(p);
-                     while (mesh.vertexCount() < holdoutMinVertices) mesh = loopSubdivide(mesh);
-                     return mesh;
-                   }};
-    split.holdout = loop.holdout = true;
-    out.push_back(std::move(split));
-    out.push_back(std::move(loop));
+    auto refined = [&](const char* how, const std::string& category, Mesh (*refine)(const Mesh&)) {
+      MeshEntry m{std::string(l.stem) + " (CGAL, " + how + ")", std::string("cgal ") + l.family, category, false, false,
+                  [p, refine] {
+                    Mesh mesh = fromFile(p);
+                    while (mesh.vertexCount() < holdoutMinVertices) mesh = refine(mesh);
+                    return mesh;
+                  }};
+      m.holdout = true;
+      out.push_back(std::move(m));
+    };
+    refined("split", l.category, splitInFour);
+    refined("Loop", "smooth by Loop", loopSubdivide);
   }
   return out;
 }
