@@ -91,6 +91,10 @@ void runMeanShift(Mesh& mesh, const DenoiseOptions& o) {
     };
     blended(", blended with ", r.blend);
     blended(r.blend.weight > 0 ? ", then with " : ", blended with ", r.startBlend);
+    // docs/denoising.md#a-light-start
+    if (r.lightStartRaced)
+      line << (r.lightStartTurnedDown ? "; a light start of " + std::to_string(o.lightStart) + " Taubin step(s) raced, its winner turned down (its normals turned too much)"
+                                      : "; a light start of " + std::to_string(o.lightStart) + " Taubin step(s) raced (the ladder ranked least at its first rung)");
     // docs/denoising.md#impulsive-noise
     if (r.impulseGarrote)
       line << (o.impulseKurtosis > 0 ? "; the noise looks impulsive: outliers" : "; outliers (--impulse on)")

@@ -171,10 +171,10 @@ struct OracleCache {
 // --strength, --presmoothing, ...: what-ifs of the default denoiser's options.
 struct WhatIf {
   std::optional<double> strength, detailBoundRatio, levelLean, blendSpread, gradientRiskWeight, impulseSpectrumKurtosis, spectrumVeto, radius, spatialBandwidth, impulseShrink, impulseKurtosis, tieMargin, tieStandardErrors,
-      taubinOnlyMargin, taubinOnlyMu, planarLevelShare, planarKeep;
+      taubinOnlyMargin, taubinOnlyMu, planarLevelShare, planarKeep, lightStartTurn;
   std::optional<std::vector<int>> taubinOnlySteps;
   std::optional<int> maxPasses, vertexIterations, patience, highMinSamples, impulseSpectrumMinSamples, fixedPasses, riskNormalSmoothing, probeSpacing, supportSteps,
-      tieProbes, minPieceVertices;
+      tieProbes, minPieceVertices, lightStart;
   std::optional<bool> refineNoise, highFrequencyLevel, halving, boundedDivergence, tieByNormals, inputCandidate,
       spatialOrder;
   bool trace = false, trueNoise = false;
@@ -195,6 +195,8 @@ struct WhatIf {
     if (impulseKurtosis) o.impulseKurtosis = *impulseKurtosis;
     if (taubinOnlySteps) o.taubinOnlySteps = *taubinOnlySteps;
     if (taubinOnlyMargin) o.taubinOnlyMargin = *taubinOnlyMargin;
+    if (lightStart) o.lightStart = *lightStart;
+    if (lightStartTurn) o.lightStartTurn = *lightStartTurn;
     if (taubinOnlyMu) o.candidateTaubin.mu = *taubinOnlyMu;
     if (radius) o.neighborhood.radius = *radius;
     if (spatialBandwidth) o.neighborhood.spatialBandwidth = *spatialBandwidth;
@@ -310,6 +312,7 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
          << blended(", blended ", r.blend) << blended(", then ", r.startBlend)
          << (r.impulseGarrote ? ", impulse garrote (kurtosis " + fixed(r.displacementKurtosis, 1) + ", spectrum " + fixed(r.spectrumKurtosis, 1) + ")" : "")
          << (r.planarKept > 0 ? ", " + std::to_string(r.planarKept) + " kept on planes" : "")
+         << (r.lightStartRaced ? (r.lightStartTurnedDown ? ", light start turned down" : ", light start raced") : "")
          << (r.tieProbes > 0 ? ", tie: " + std::to_string(r.tieProbes) + (r.tieProbes > 1 ? " more probes" : " more probe") +
                                    (r.tieByNormals ? ", by normals" : "")
                              : "")
@@ -573,7 +576,7 @@ int usage(const char* error) {
          "  --gradient-risk-weight, --impulse-spectrum-kurtosis, --min-piece (minPieceVertices), --blend-spread,\n"
          "  --high-min-samples (highFrequencyMinSamples), --impulse-spectrum-veto,\n"
          "  --impulse-spectrum-min-samples (impulseSpectrumMinSamples), --planar-level-share (planarLevelShare),\n"
-         "  --planar-keep (planarKeep)\n"
+         "  --planar-keep (planarKeep), --light-start (lightStart), --light-start-turn (lightStartTurn)\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
          "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
@@ -651,6 +654,8 @@ int main(int argc, char** argv) {
         }
       }
       else if (a == "--taubin-only-margin") whatIf.taubinOnlyMargin = std::stod(value());
+      else if (a == "--light-start") whatIf.lightStart = std::stoi(value());
+      else if (a == "--light-start-turn") whatIf.lightStartTurn = std::stod(value());
       else if (a == "--taubin-only-mu") whatIf.taubinOnlyMu = std::stod(value());
       else if (a == "--max-passes") whatIf.maxPasses = std::stoi(value());
       else if (a == "--presmoothing") whatIf.presmoothing = list([](const std::string& s) { return std::stoi(s); });

@@ -33,6 +33,8 @@ OpOutput runDenoise(const OpContext& context) {
       out.stats.set("passesRun", r.passesRun);
       out.stats.set("tieProbes", r.tieProbes);
       out.stats.set("tieByNormals", r.tieByNormals ? "yes" : "no");
+      // docs/denoising.md#a-light-start
+      out.stats.set("lightStart", r.lightStartTurnedDown ? "turned down" : r.lightStartRaced ? "raced" : "no");
       out.stats.set("estimatedError", r.estimatedError);
       out.stats.set("impulseGarrote", r.impulseGarrote ? "yes" : "no");
       // docs/denoising.md#the-noise-level ("Planes left untouched") and #impulsive-noise ("Vertices

@@ -47,6 +47,9 @@ void validate(const DenoiseOptions& o) {
   if (!(o.candidateTaubin.lambda > 0) || !(o.candidateTaubin.mu < -o.candidateTaubin.lambda))
     bad("Taubin-only candidates need lambda > 0 and mu < -lambda (got " + std::to_string(o.candidateTaubin.lambda) + ", " +
         std::to_string(o.candidateTaubin.mu) + ")");
+  if (o.lightStart < 0 || o.lightStart > 10000) bad("light start steps must be in [0, 10000] (got " + std::to_string(o.lightStart) + ")");
+  if (!(o.lightStartTurn > 0) || !std::isfinite(o.lightStartTurn))
+    bad("light start turn must be > 0 (got " + std::to_string(o.lightStartTurn) + ")");
   if (!(o.taubinOnlyMargin >= 0) || !std::isfinite(o.taubinOnlyMargin))
     bad("Taubin-only margin must be >= 0 (got " + std::to_string(o.taubinOnlyMargin) + ")");
   if (o.maxPasses < 1 || o.maxPasses > 10000) bad("maximum passes must be in [1, 10000] (got " + std::to_string(o.maxPasses) + ")");
@@ -369,11 +372,13 @@ class CandidateRace {
 // contenders it does not lead by that much are tied along N, and with o.tieByNormals the one whose
 // normals turn least across an edge on average wins. Returns the winner's index in `scored`, moves its
 // positions into x and sets `sums` to its sums with the mean divergence of the probes. `leaderX` holds
-// the positions of scored[leaderIndex] (the race's best).
+// the positions of scored[leaderIndex] (the race's best). The start of excludedStart steps (-1: none)
+// takes no part.
 size_t settleTie(const Mesh& mesh, const DenoiseOptions& o, Passes& passes, RiskEstimate& risk, const Ranking& rank,
                  const std::vector<CandidateRace::Scored>& scored, size_t chosen, size_t leaderIndex,
                  std::vector<Vec3>& leaderX, const std::vector<Vec3>& input, const VertexUpdateOptions& inputUpdate,
-                 const Progress& progress, DenoiseResult& result, std::vector<Vec3>& x, RiskSums& sums) {
+                 const Progress& progress, DenoiseResult& result, std::vector<Vec3>& x, RiskSums& sums,
+                 int excludedStart) {
   struct Contender {
     size_t index;
     std::vector<Vec3> x;
@@ -404,7 +409,9 @@ size_t settleTie(const Mesh& mesh, const DenoiseOptions& o, Passes& passes, Risk
   // Taubin-only candidates contend only when one won: behind a candidate with passes they lost by the
   // margin rule, whatever their rank.
   std::erase_if(contenders, [&](const Contender& c) {
-    return c.ranks.front() > top + o.tieMargin || (scored[c.index].taubinOnly && !scored[chosen].taubinOnly);
+    const CandidateRace::Scored& s = scored[c.index];
+    return c.ranks.front() > top + o.tieMargin || (s.taubinOnly && !scored[chosen].taubinOnly) ||
+           (!s.taubinOnly && s.steps == excludedStart);
   });
   sums = scored[chosen].sums;
   if (contenders.size() < 2 || o.tieProbes == 0) return chosen;
@@ -665,7 +672,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   Ranking rank{risk, raceSigma};
   CandidateRace race(o, risk, rank, result, order.renumbering.newVertex);
 
-  for (int steps : o.presmoothing) {
+  auto addStart = [&](int steps) {
     // Smoothed once per step count; the runs of the other bandwidths start from copies.
     Track x{input, &inputUpdate}, xp{probed, &probedUpdate};
     passes.presmooth(x, steps);
@@ -675,7 +682,8 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       CandidateRace::Run run{steps, o.rangeBandwidths[i], last ? std::move(x) : x, last ? std::move(xp) : xp};
       race.add(std::move(run));
     }
-  }
+  };
+  for (int steps : o.presmoothing) addStart(steps);
   {
     // Taubin-only candidates, each step count continued from the last.
     Track x{input, &inputUpdate}, xp{probed, &probedUpdate};
@@ -685,6 +693,20 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
       passes.taubinOnly(xp, steps - done);
       done = steps;
       race.addTaubinOnly(steps, x, xp);
+    }
+  }
+  // The light start (DenoiseOptions::lightStart): where the ladder ranks least at its first rung,
+  // the noise wants little smoothing, as on thin parts and very uneven meshes.
+  if (o.lightStart > 0 && !o.taubinOnlySteps.empty() &&
+      std::find(o.presmoothing.begin(), o.presmoothing.end(), o.lightStart) == o.presmoothing.end() &&
+      !(o.impulseSpectrumKurtosis > 0 && result.spectrumKurtosis > o.impulseSpectrumKurtosis)) {
+    const std::vector<CandidateRace::Scored>& ladder = race.scored();
+    size_t least = ladder.size();
+    for (size_t i = 0; i < ladder.size(); ++i)
+      if (ladder[i].taubinOnly && (least == ladder.size() || rank(ladder[i].sums) < rank(ladder[least].sums))) least = i;
+    if (least < ladder.size() && ladder[least].steps == o.taubinOnlySteps.front()) {
+      addStart(o.lightStart);
+      result.lightStartRaced = true;
     }
   }
   std::vector<Vec3>().swap(probed);  // the probe tracks have started from it
@@ -738,12 +760,44 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     if (best < scored.size() && rank(scored[best].sums) - rank(scored[chosen].sums) < o.taubinOnlyMargin) chosen = best;
   }
   race.releaseRuns();
+  // The light start's winner stands only if its normals turn no more than lightStartTurn times as
+  // much as those of the best of the rest (chosen as above without it).
+  const auto isLight = [&](const CandidateRace::Scored& c) {
+    return result.lightStartRaced && !c.taubinOnly && c.steps == o.lightStart;
+  };
+  int excludedStart = -1;
+  if (isLight(scored[chosen])) {
+    auto best = [&](bool taubinOnly) {
+      size_t b = scored.size();
+      for (size_t i = 0; i < scored.size(); ++i)
+        if (!isLight(scored[i]) && (taubinOnly || !scored[i].taubinOnly) &&
+            (b == scored.size() || rank(scored[i].sums) < rank(scored[b].sums)))
+          b = i;
+      return b;
+    };
+    size_t rest = best(true);
+    if (scored[rest].taubinOnly) {
+      const size_t withPasses = best(false);
+      if (withPasses < scored.size() && rank(scored[withPasses].sums) - rank(scored[rest].sums) < o.taubinOnlyMargin)
+        rest = withPasses;
+    }
+    auto turnOf = [&](const CandidateRace::Scored& c) {
+      Track track{input, &inputUpdate};
+      passes.candidate(track, c.steps, c.taubinOnly, c.passes, c.rangeBandwidth, result);
+      return meanNormalTurn(mesh, track.positions);
+    };
+    if (turnOf(scored[chosen]) > o.lightStartTurn * turnOf(scored[rest])) {
+      chosen = rest;
+      excludedStart = o.lightStart;
+      result.lightStartTurnedDown = true;
+    }
+  }
   std::vector<Vec3> x;
   RiskSums winnerSums;
   {
     std::vector<Vec3> leaderX = race.takeBest();
     chosen = settleTie(mesh, o, passes, risk, rank, scored, chosen, race.bestIndex(), leaderX, input, inputUpdate, progress,
-                       result, x, winnerSums);
+                       result, x, winnerSums, excludedStart);
     if (x.empty() && chosen == race.bestIndex()) x = std::move(leaderX);
   }
   const CandidateRace::Scored& winner = scored[chosen];
@@ -781,7 +835,9 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     auto best = [&](auto&& admits) {
       size_t b = scored.size();
       for (size_t i = 0; i < scored.size(); ++i)
-        if (admits(scored[i]) && (b == scored.size() || rank(scored[i].sums) < rank(scored[b].sums))) b = i;
+        if (admits(scored[i]) && !(excludedStart >= 0 && isLight(scored[i])) &&
+            (b == scored.size() || rank(scored[i].sums) < rank(scored[b].sums)))
+          b = i;
       return b;
     };
     const size_t other = best([&](const CandidateRace::Scored& c) { return c.taubinOnly != winner.taubinOnly; });

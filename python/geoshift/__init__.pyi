@@ -125,6 +125,8 @@ class DenoiseOptions:
     taubin_only_steps: List[int]
     candidate_taubin: TaubinOptions
     taubin_only_margin: float
+    light_start: int
+    light_start_turn: float
     blend_spread: float
     max_passes: int
     patience: int
@@ -166,7 +168,7 @@ class DenoiseOptions:
                  support_smoothing: Union[TaubinOptions, dict, None] = None, presmoothing: Sequence[int] = (3, 15),
                  taubin_only_steps: Sequence[int] = (5, 8, 12, 18, 27, 40, 60, 90),
                  candidate_taubin: Union[TaubinOptions, dict, None] = None, taubin_only_margin: float = 0.005,
-                 blend_spread: float = 1.0,
+                 light_start: int = 1, light_start_turn: float = 1.5, blend_spread: float = 1.0,
                  max_passes: int = 40, patience: int = 4, fixed_passes: int = 0, vertex_iterations: int = 10,
                  risk_normal_smoothing: int = 20, probe_spacing: int = 5, bounded_divergence: bool = True,
                  gradient_risk_weight: float = 0.0,

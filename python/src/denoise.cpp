@@ -75,6 +75,8 @@ py::dict denoiseRequestCall(Built& b, const py::dict& params, const DenoiseOptio
     out["passes_run"] = r.passesRun;
     out["tie_probes"] = r.tieProbes;
     out["tie_by_normals"] = r.tieByNormals;
+    out["light_start_raced"] = r.lightStartRaced;
+    out["light_start_turned_down"] = r.lightStartTurnedDown;
     out["estimated_error"] = r.estimatedError;
     out["impulse_garrote"] = r.impulseGarrote;
     out["kept_input"] = r.keptInput;

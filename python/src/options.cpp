@@ -210,6 +210,8 @@ void bindOptions(py::module_& m) {
       .def_readwrite("taubin_only_steps", &DenoiseOptions::taubinOnlySteps)
       .def_readwrite("candidate_taubin", &DenoiseOptions::candidateTaubin)
       .def_readwrite("taubin_only_margin", &DenoiseOptions::taubinOnlyMargin)
+      .def_readwrite("light_start", &DenoiseOptions::lightStart)
+      .def_readwrite("light_start_turn", &DenoiseOptions::lightStartTurn)
       .def_readwrite("blend_spread", &DenoiseOptions::blendSpread)
       .def_readwrite("max_passes", &DenoiseOptions::maxPasses)
       .def_readwrite("patience", &DenoiseOptions::patience)

@@ -65,6 +65,17 @@ test('a tie says how many more probes settled it, and when the normals did', asy
   assert.equal(await chosen({ ...PASSES, tieProbes: 0, tieByNormals: 'yes' }), '15 Taubin steps + 2 passes at Keep edges 0.35');
 });
 
+test('a light start is named after the tie, with whether its winner was turned down', async () => {
+  assert.equal(await chosen({ ...PASSES, presmoothingSteps: 1, passes: 3, lightStart: 'raced' }),
+    '1 Taubin step + 3 passes at Keep edges 0.35; a light start raced (little smoothing looked best)');
+  assert.equal(await chosen({ ...PASSES, presmoothingSteps: 3, passes: 3, tieProbes: 1, lightStart: 'turned down',
+    impulseGarrote: 'yes' }),
+    '3 Taubin steps + 3 passes at Keep edges 0.35; a close call between two starts, settled by 1 more probe;' +
+    ' a light start raced, turned down (its normals turned too much); impulsive noise: only the outliers moved');
+  // 'no', or a stat the op did not send, says nothing of it.
+  assert.equal(await chosen({ ...PASSES, lightStart: 'no' }), '15 Taubin steps + 2 passes at Keep edges 0.35');
+});
+
 test('the impulse correction is named after the tie', async () => {
   assert.equal(await chosen({ ...PASSES, presmoothingSteps: 3, passes: 1, tieProbes: 2, impulseGarrote: 'yes' }),
     '3 Taubin steps + 1 pass at Keep edges 0.35; a close call between two starts, settled by 2 more probes;' +

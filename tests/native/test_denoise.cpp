@@ -1106,3 +1106,93 @@ TEST_CASE("hybrid denoising: the coarse mesh is denoised, the details dropped", 
     REQUIRE_THROWS_AS(denoise(m, o), InputError);
   }
 }
+
+// docs/denoising.md#a-light-start. A ladder of one rung ranks least at its first rung on any mesh,
+// which makes the trigger fire where the test wants it.
+TEST_CASE("a light start races where the ladder ranks least at its first rung, and its winner must keep its normals calm",
+          "[denoise][light-start]") {
+  const Mesh clean = build(shapes::icosphere(3));
+  const Mesh noisy = withNormalNoise(clean, 0.3, 5);
+  DenoiseOptions o;
+  o.threads = 1;
+  o.blendSpread = 0;  // the result is then one candidate, which can be computed alone
+  o.tieProbes = 0;
+
+  // The default ladder ranks least further up: no light start, and the same bits as without one.
+  Mesh plain = noisy, off = noisy;
+  const DenoiseResult rp = denoise(plain, o);
+  REQUIRE_FALSE(rp.lightStartRaced);
+  DenoiseOptions none = o;
+  none.lightStart = 0;
+  denoise(off, none);
+  REQUIRE(plain.positions() == off.positions());
+
+  // One rung: the light start races and, its normals turning little, its winner stands. The result
+  // is that candidate exactly.
+  o.taubinOnlySteps = {200};
+  Mesh light = noisy;
+  const DenoiseResult rl = denoise(light, o);
+  INFO("light: Taubin " << rl.presmoothingSteps << " + " << rl.passes << " passes at h_r " << rl.rangeBandwidth);
+  REQUIRE(rl.lightStartRaced);
+  REQUIRE_FALSE(rl.lightStartTurnedDown);
+  REQUIRE(rl.presmoothingSteps == o.lightStart);
+  REQUIRE_FALSE(rl.taubinOnly);
+  REQUIRE(light.positions() == candidateAlone(noisy, rl.presmoothingSteps, rl.passes, false, rl.rangeBandwidth, rl.noiseLevel));
+  REQUIRE(rmsTo(light, clean) < 0.5 * rmsTo(noisy, clean));
+
+  // A turn no candidate can keep under: the best of the rest wins, and it is that candidate exactly,
+  // from another start.
+  DenoiseOptions strict = o;
+  strict.lightStartTurn = 1e-9;
+  Mesh down = noisy;
+  const DenoiseResult rd = denoise(down, strict);
+  INFO("turned down: Taubin " << rd.presmoothingSteps << " + " << rd.passes << " passes, Taubin only: " << rd.taubinOnly);
+  REQUIRE(rd.lightStartRaced);
+  REQUIRE(rd.lightStartTurnedDown);
+  REQUIRE((rd.taubinOnly || rd.presmoothingSteps != strict.lightStart));
+  REQUIRE(down.positions() ==
+          candidateAlone(noisy, rd.presmoothingSteps, rd.passes, rd.taubinOnly, rd.rangeBandwidth, rd.noiseLevel));
+  REQUIRE(down.positions() != light.positions());
+
+  // Turned down, it takes no part in the tie or the blends either.
+  strict.blendSpread = DenoiseOptions{}.blendSpread;
+  strict.tieProbes = DenoiseOptions{}.tieProbes;
+  strict.tieMargin = 1;  // every start's best contends
+  Mesh mixed = noisy;
+  const DenoiseResult rm = denoise(mixed, strict);
+  REQUIRE(rm.lightStartTurnedDown);
+  REQUIRE((rm.taubinOnly || rm.presmoothingSteps != strict.lightStart));
+  for (const DenoiseResult::Blend& b : {rm.blend, rm.startBlend})
+    if (b.weight > 0) REQUIRE((b.taubinOnly || b.presmoothingSteps != strict.lightStart));
+
+  // Not where the spectrum's tails say impulsive noise, nor where a start of as many steps is
+  // offered anyway, nor when switched off.
+  Mesh impulsive = clean;
+  NoiseOptions spikes;
+  spikes.amount = 0.5;
+  spikes.distribution = NoiseDistribution::Impulsive;
+  spikes.direction = NoiseDirection::Normal;
+  spikes.seed = 5;
+  addNoise(impulsive, spikes);
+  const DenoiseResult ri = denoise(impulsive, o);
+  REQUIRE(ri.spectrumKurtosis > o.impulseSpectrumKurtosis);
+  REQUIRE_FALSE(ri.lightStartRaced);
+  DenoiseOptions listed = o;
+  listed.presmoothing = {1, 15};
+  Mesh l = noisy;
+  REQUIRE_FALSE(denoise(l, listed).lightStartRaced);
+  DenoiseOptions zero = o;
+  zero.lightStart = 0;
+  Mesh z = noisy;
+  REQUIRE_FALSE(denoise(z, zero).lightStartRaced);
+
+  // Bad settings are refused before the mesh is touched.
+  DenoiseOptions bad = o;
+  bad.lightStart = -1;
+  Mesh b = noisy;
+  REQUIRE_THROWS_AS(denoise(b, bad), InputError);
+  bad.lightStart = 1;
+  bad.lightStartTurn = 0;
+  REQUIRE_THROWS_AS(denoise(b, bad), InputError);
+  REQUIRE(b.positions() == noisy.positions());
+}

@@ -12,7 +12,8 @@ const PLANAR_LEVEL = 'noise level read against the flat faces the noise left';
 /**
  * "15 Taubin steps + 2 passes at Keep edges 0.35", "27 Taubin steps alone (no pass)" or that the mesh
  * was left as it was, with the candidates blended in, whether the noise level was read against the
- * flat faces the noise left, what decided a close call between the starts, whether only outliers were
+ * flat faces the noise left, what decided a close call between the starts, whether a light start
+ * raced (and whether its winner was turned down), whether only outliers were
  * moved, how many vertices that correction moved were put back because they lie on untouched planes,
  * and how many pieces too small to denoise were left as they were; null for stats that are not the
  * default denoiser's (another filter, the paper preset).
@@ -44,6 +45,9 @@ export function chosenSummary(stats: DenoiseStats): string | null {
     text +=
       `; a close call between two starts, settled by ${counted(probes, 'more probe', 'more probes')}` +
       (stats.tieByNormals === 'yes' ? ' and then by the smoother normals' : '');
+  // docs/denoising.md#a-light-start: little smoothing looked best.
+  if (stats.lightStart === 'raced') text += '; a light start raced (little smoothing looked best)';
+  else if (stats.lightStart === 'turned down') text += '; a light start raced, turned down (its normals turned too much)';
   if (stats.impulseGarrote === 'yes') text += '; impulsive noise: only the outliers moved';
   // docs/denoising.md#impulsive-noise ("Vertices on untouched planes"): moved by the correction, put back.
   const planarKept = stats.planarKept;

@@ -83,6 +83,15 @@ struct DenoiseOptions {
     return t;
   }();
   double taubinOnlyMargin = 0.005;
+  // A light start for thin and very uneven parts (docs/denoising.md#a-light-start): where the
+  // Taubin-only ladder ranks least at its first rung (at the race's level) and
+  // the input's highest frequencies have a kurtosis of at most impulseSpectrumKurtosis, a third
+  // start of lightStart Taubin steps races beside the others, at every h_r. Its winner stands only
+  // if its face normals turn across an edge (meanNormalTurn) at most lightStartTurn times as much
+  // as those of the best candidate of the other starts and Taubin alone; otherwise that candidate
+  // wins and the light start takes no part in the tie or the blend. 0: never.
+  int lightStart = 1;
+  double lightStartTurn = 1.5;
   // The blend of least risk (docs/denoising.md#the-blend-of-least-risk). With errors e_W, e_O along
   // N, the blend (1 − w) x_W + w x_O has the risk (1 − w) R_W + w R_O − w (1 − w) D, D their mean
   // squared difference along N over σ²: least at w = 0.5 (1 − (R_O − R_W) / D). The winner is so
@@ -251,6 +260,8 @@ struct DenoiseResult {
   int passesRun = 0;            // computed, all candidates (and the probes of a tie)
   int tieProbes = 0;            // more probes run to settle a tie between starts (tieProbes option)
   bool tieByNormals = false;    // they left it tied along N, and the normals' turn decided (tieByNormals)
+  bool lightStartRaced = false;     // the light start raced beside the others (lightStart)
+  bool lightStartTurnedDown = false;  // its winner's normals turned too much: the best of the rest won
   double displacementKurtosis = 0;  // of the winner's displacement along N (impulseKurtosis)
   double spectrumKurtosis = 0;      // of the input's highest frequencies (impulseSpectrumKurtosis); 0: not read
   bool impulseGarrote = false;  // the outliers were corrected as for impulsive noise (impulseShrink)
