@@ -671,6 +671,24 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
 
   Ranking rank{risk, raceSigma};
   CandidateRace race(o, risk, rank, result, order.renumbering.newVertex);
+  using Scored = CandidateRace::Scored;
+  const std::vector<Scored>& scored = race.scored();
+  // The candidate of least rank (at the ranking's level when called) among those `admits` takes,
+  // ties to the earlier scored; scored.size() where none.
+  auto bestOf = [&](auto&& admits) {
+    size_t b = scored.size();
+    for (size_t i = 0; i < scored.size(); ++i)
+      if (admits(scored[i]) && (b == scored.size() || rank(scored[i].sums) < rank(scored[b].sums))) b = i;
+    return b;
+  };
+  // A Taubin-only candidate c must lead the best candidate with passes (of those `admits` takes) by
+  // the margin; otherwise that one.
+  auto withMargin = [&](size_t c, auto&& admits) {
+    if (!scored[c].taubinOnly) return c;
+    const size_t b = bestOf([&](const Scored& s) { return !s.taubinOnly && admits(s); });
+    return b < scored.size() && rank(scored[b].sums) - rank(scored[c].sums) < o.taubinOnlyMargin ? b : c;
+  };
+  const auto any = [](const Scored&) { return true; };
 
   auto addStart = [&](int steps) {
     // Smoothed once per step count; the runs of the other bandwidths start from copies.
@@ -700,11 +718,8 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   if (o.lightStart > 0 && !o.taubinOnlySteps.empty() &&
       std::find(o.presmoothing.begin(), o.presmoothing.end(), o.lightStart) == o.presmoothing.end() &&
       !(o.impulseSpectrumKurtosis > 0 && result.spectrumKurtosis > o.impulseSpectrumKurtosis)) {
-    const std::vector<CandidateRace::Scored>& ladder = race.scored();
-    size_t least = ladder.size();
-    for (size_t i = 0; i < ladder.size(); ++i)
-      if (ladder[i].taubinOnly && (least == ladder.size() || rank(ladder[i].sums) < rank(ladder[least].sums))) least = i;
-    if (least < ladder.size() && ladder[least].steps == o.taubinOnlySteps.front()) {
+    const size_t least = bestOf([](const Scored& c) { return c.taubinOnly; });
+    if (least < scored.size() && scored[least].steps == o.taubinOnlySteps.front()) {
       addStart(o.lightStart);
       result.lightStartRaced = true;
     }
@@ -714,7 +729,6 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
 
   // Refinement: the least noise variance a good candidate implies, kept between the two estimates,
   // then every candidate ranked again with it; the winner is recomputed if it changed.
-  const std::vector<CandidateRace::Scored>& scored = race.scored();
   size_t chosen = race.bestIndex();
   double finalSigma = raceSigma;
   rank.sigma = finalSigma;
@@ -752,46 +766,27 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
     for (size_t i = 0; i < scored.size(); ++i)
       if (rank(scored[i].sums) < rank(scored[chosen].sums)) chosen = i;
   }
-  if (scored[chosen].taubinOnly) {
-    // A Taubin-only winner must lead the best candidate with passes by the margin.
-    size_t best = scored.size();
-    for (size_t i = 0; i < scored.size(); ++i)
-      if (!scored[i].taubinOnly && (best == scored.size() || rank(scored[i].sums) < rank(scored[best].sums))) best = i;
-    if (best < scored.size() && rank(scored[best].sums) - rank(scored[chosen].sums) < o.taubinOnlyMargin) chosen = best;
-  }
+  chosen = withMargin(chosen, any);
   race.releaseRuns();
   // The light start's winner stands only if its normals turn no more than lightStartTurn times as
   // much as those of the best of the rest (chosen as above without it).
-  const auto isLight = [&](const CandidateRace::Scored& c) {
-    return result.lightStartRaced && !c.taubinOnly && c.steps == o.lightStart;
-  };
-  int excludedStart = -1;
+  const auto isLight = [&](const Scored& c) { return result.lightStartRaced && !c.taubinOnly && c.steps == o.lightStart; };
   if (isLight(scored[chosen])) {
-    auto best = [&](bool taubinOnly) {
-      size_t b = scored.size();
-      for (size_t i = 0; i < scored.size(); ++i)
-        if (!isLight(scored[i]) && (taubinOnly || !scored[i].taubinOnly) &&
-            (b == scored.size() || rank(scored[i].sums) < rank(scored[b].sums)))
-          b = i;
-      return b;
-    };
-    size_t rest = best(true);
-    if (scored[rest].taubinOnly) {
-      const size_t withPasses = best(false);
-      if (withPasses < scored.size() && rank(scored[withPasses].sums) - rank(scored[rest].sums) < o.taubinOnlyMargin)
-        rest = withPasses;
-    }
-    auto turnOf = [&](const CandidateRace::Scored& c) {
+    const auto notLight = [&](const Scored& c) { return !isLight(c); };
+    const size_t rest = withMargin(bestOf(notLight), notLight);
+    auto turnOf = [&](const Scored& c) {
       Track track{input, &inputUpdate};
       passes.candidate(track, c.steps, c.taubinOnly, c.passes, c.rangeBandwidth, result);
       return meanNormalTurn(mesh, track.positions);
     };
     if (turnOf(scored[chosen]) > o.lightStartTurn * turnOf(scored[rest])) {
       chosen = rest;
-      excludedStart = o.lightStart;
       result.lightStartTurnedDown = true;
     }
   }
+  // Turned down, the light start takes no part in the tie or the blend either.
+  const int excludedStart = result.lightStartTurnedDown ? o.lightStart : -1;
+  const auto admitted = [&](const Scored& c) { return !(result.lightStartTurnedDown && isLight(c)); };
   std::vector<Vec3> x;
   RiskSums winnerSums;
   {
@@ -832,14 +827,7 @@ DenoiseResult denoiseDefault(Mesh& mesh, const DenoiseOptions& o, const Progress
   if (o.blendSpread > 0) {
     // The blend of least risk (DenoiseOptions::blendSpread): first the best of the other family,
     // then the best with passes from the other start, each against the blend so far.
-    auto best = [&](auto&& admits) {
-      size_t b = scored.size();
-      for (size_t i = 0; i < scored.size(); ++i)
-        if (admits(scored[i]) && !(excludedStart >= 0 && isLight(scored[i])) &&
-            (b == scored.size() || rank(scored[i].sums) < rank(scored[b].sums)))
-          b = i;
-      return b;
-    };
+    auto best = [&](auto&& admits) { return bestOf([&](const Scored& c) { return admitted(c) && admits(c); }); };
     const size_t other = best([&](const CandidateRace::Scored& c) { return c.taubinOnly != winner.taubinOnly; });
     double blendedRank = rank(winnerSums);
     auto blendIn = [&](size_t i, DenoiseResult::Blend& record) {
