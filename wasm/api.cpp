@@ -117,7 +117,7 @@ val listPresets() {
   denoise.set("name", std::string("denoise"));
   denoise.set("description", std::string("the default denoiser (docs/denoising.md)"));
   denoise.set("signal", std::string("normal"));
-  for (const char* name : {"strength", "noise", "passes", "radius", "hs", "vertexIterations", "levels", "alpha"})
+  for (const char* name : {"strength", "noise", "passes", "radius", "hs", "vertexIterations", "lightStart", "levels", "alpha"})
     denoise.set(name, defaults.number(name));
   denoise.set("impulse", defaults.text("impulse"));
   // Several candidate h_r by default: the app shows 0 (Auto), which the op reads as those.

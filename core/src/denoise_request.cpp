@@ -59,6 +59,7 @@ void applyDefault(const ParamRequest& r, DenoiseOptions& o) {
     if (steps != std::vector<double>{0.0})
       for (double k : steps) o.taubinOnlySteps.push_back(static_cast<int>(k));
   }
+  if (r.has("lightStart")) o.lightStart = r.integer("lightStart");
   if (r.has("impulse")) {
     const std::string rule = r.text("impulse");
     if (rule == "off") o.impulseShrink = 0;

@@ -213,6 +213,11 @@ OpParamSpecs denoiseSpecs() {
               P("taubinOnly", T::Integer,
                 "Taubin step counts (mu -0.502) scored as candidates of their own, without passes; 0: none")
                   .list().byDefault(numbers(d.taubinOnlySteps)).range(0, 10000).appliesWhen(ours),
+              P("lightStart", T::Integer,
+                "Taubin steps of a light start, raced beside the others where the Taubin-only candidates estimate "
+                "least at their fewest steps (thin parts); its winner stands only if its normals turn at most 1.5 "
+                "times as much as the rest's; 0: none")
+                  .byDefault(static_cast<double>(d.lightStart)).range(0, 10000).appliesWhen(ours),
               P("impulse", T::Enum,
                 "outliers of impulsive noise: auto: corrected when the result's displacements or the input's highest "
                 "frequencies say the noise moved few vertices far; on: always corrected, the other vertices mostly "

@@ -282,6 +282,15 @@ export interface DenoiseOptions {
    */
   taubinOnly?: number | number[];
   /**
+   * Taubin steps of a light start, raced beside the others where the Taubin-only candidates
+   * estimate least at their fewest steps (thin parts); its winner stands only if its normals turn
+   * at most 1.5 times as much as the rest's; 0: none.
+   *
+   * Default: `1`. A whole number ≥ 0 and ≤ 10000. Applies only where method is 'meanshift' and
+   * preset is 'default'.
+   */
+  lightStart?: number;
+  /**
    * Outliers of impulsive noise: auto: corrected when the result's displacements or the input's
    * highest frequencies say the noise moved few vertices far; on: always corrected, the other
    * vertices mostly kept; off: never.

@@ -55,7 +55,10 @@ test('a GLB given to file-input is denoised and exported with the same vertex co
   // The Denoise preset leads with strength, keep edges and the noise level; the rest is folded.
   await page.getByTestId('preset-select').selectOption('denoise');
   for (const key of ['strength', 'hr', 'noise']) assert.ok(await page.locator(`[data-param="${key}"]`).isVisible(), key);
-  assert.equal(await page.locator('[data-param="passes"]').isVisible(), false, 'passes is an expert setting');
+  for (const key of ['passes', 'impulse', 'lightStart']) {
+    assert.equal(await page.locator(`[data-param="${key}"]`).count(), 1, key);
+    assert.equal(await page.locator(`[data-param="${key}"]`).isVisible(), false, `${key} is an expert setting`);
+  }
 
   await runPreset(page, 'denoise', { passes: 1 });
   const report = await page.evaluate(() => window.__geoshift.lastRun());

@@ -173,6 +173,13 @@ TEST_CASE("a denoise request becomes the options of its method, with the options
         std::vector<int>{10, 30});
   CHECK(denoiseSettings(ParamValues{{"taubinOnly", std::vector<double>{0, 5}}}).meanShift.taubinOnlySteps ==
         std::vector<int>{0, 5});
+  // lightStart: the steps of the light start (docs/denoising.md#a-light-start), 0 turns it off.
+  CHECK(defaults.integer("lightStart") == d.lightStart);
+  CHECK(none.meanShift.lightStart == d.lightStart);
+  CHECK(denoiseSettings(ParamValues{{"lightStart", 0.0}}).meanShift.lightStart == 0);
+  CHECK(denoiseSettings(ParamValues{{"lightStart", 2.0}}).meanShift.lightStart == 2);
+  CHECK_THAT(refusal("denoise", {{"lightStart", 1.5}}), Contains("lightStart"));
+  CHECK_THAT(refusal("denoise", {{"preset", std::string("paper")}, {"lightStart", 0.0}}), Contains("lightStart"));
   CHECK(defaults.text("impulse") == "auto");
   for (const char* rule : {"auto", "on", "off"}) {
     const DenoiseOptions i = denoiseSettings(ParamValues{{"impulse", std::string(rule)}}).meanShift;

@@ -101,6 +101,7 @@ test('presets() gives the default denoiser\'s settings: sent as parameters they 
   assert.equal(params.passes, 0);  // chosen by SURE
   assert.equal(params.hr, 0);      // the default candidates, SURE picks one
   assert.equal(params.impulse, 'auto');  // outliers corrected when the result says the noise is impulsive
+  assert.equal(params.lightStart, 1);  // a light start of one Taubin step where the ladder ranks least at its first rung
   const off = path.join(dir, 'box.off');
   writeCoff(off, noisy);
   const r = denoised(geoshift, params);
@@ -123,6 +124,29 @@ test('impulse "on" corrects outliers under dense noise as `geoshift denoise --im
   assert.ok(sameBits(never.positions, auto.positions), 'off differs from auto where auto does not fire');
   assert.ok(!sameBits(on.positions, auto.positions), 'on changed nothing');
   assertClose(assert, on.positions, runNative(dir, 'denoise', off, ['--impulse', 'on'])('POSITION'), 'positions');
+});
+
+// The light start (docs/denoising.md#a-light-start) races where the Taubin-only ladder estimates
+// least at its first rung; a ladder of one rung forces that. On a finer box with less noise its
+// winner stands: lightStart reaches the op as --light-start reaches the CLI, and 0 turns it off.
+test('lightStart races a light start where the ladder ranks least at its first rung, as `geoshift denoise --light-start` does', () => {
+  const light = jiggle(box(8), 0.02);
+  const off = path.join(dir, 'box-light.off');
+  writeCoff(off, light);
+  const one = denoised(geoshift, { taubinOnly: [200] }, light);
+  const two = denoised(geoshift, { taubinOnly: [200], lightStart: 2 }, light);
+  const none = denoised(geoshift, { taubinOnly: [200], lightStart: 0 }, light);
+  assert.equal(denoised(geoshift, {}, light).stats.lightStart, 'no');  // the default ladder ranks least further up
+  for (const [r, steps] of [[one, 1], [two, 2]]) {
+    assert.equal(r.stats.lightStart, 'raced', JSON.stringify(r.stats));
+    assert.equal(r.stats.presmoothingSteps, steps, JSON.stringify(r.stats));  // its winner stood
+  }
+  assert.equal(none.stats.lightStart, 'no');
+  assert.equal(none.stats.presmoothingSteps, 3);
+  for (const [r, n] of [[one, '1'], [two, '2'], [none, '0']]) {
+    assertClose(assert, r.positions, runNative(dir, 'denoise', off, ['--taubin-only', '200', '--light-start', n])('POSITION'), `positions, --light-start ${n}`);
+  }
+  assert.ok(!sameBits(one.positions, none.positions) && !sameBits(two.positions, one.positions), 'lightStart changed nothing');
 });
 
 // The box with two vertices inside each side pushed along the side's normal (one out by half an edge,
@@ -230,6 +254,8 @@ test('bad denoise parameters are refused, naming what is wrong', () => {
   expectError({ method: 'bilateral', levels: 1 }, /parameter levels belongs to method "meanshift"/);
   expectError({ method: 'taubin', hs: 3 }, /parameter hs belongs to method "meanshift"/);
   expectError({ normalIterations: 3 }, /normalIterations belongs to method "bilateral"/);
+  expectError({ lightStart: -1 }, /parameter lightStart/);
+  expectError({ preset: 'paper', lightStart: 0 }, /parameter lightStart/);
   expectError({ method: 'taubin', vertexIterations: 3 }, /vertexIterations does not apply/);
   expectError({ hr: -0.1 }, /parameter hr/);
   expectError({ passes: -1 }, /parameter passes/);

@@ -121,6 +121,7 @@ export const PRESETS: Preset[] = [
       expert(num('hs', 'Spatial bandwidth h_s', AEL, CORE, 0.1, 5, 0.05, 'How quickly the influence of a neighbouring face fades with its distance.')),
       expert(num('vertexIterations', 'Vertex update steps', '', CORE, 1, 200, 1, 'Steps that move the vertices to fit the filtered normals after each pass.')),
       expert(impulse()),
+      expert(num('lightStart', 'Light start (0 = off)', 'Taubin steps', CORE, 0, 10, 1, 'On thin parts (blades, fins, sheets) a result with very little smoothing often looks best: it is tried too, and kept only if its surface is not much rougher than the others. 0 never tries it.')),
       expert(levels(CORE)), expert(alpha(CORE)),
     ],
   },
