@@ -287,7 +287,8 @@ Score ours(const Case& c, const WhatIf& w, std::uint64_t seed, bool paper) {
       for (size_t v = 0; v < x.size(); ++v) along += std::pow((x[v] - c.clean.position(v)).dot(N[v]), 2);
       along = std::sqrt(along / x.size()) / ael;
       trace << "  trace " << c.mesh << " | " << c.noise << " | k " << steps << " t " << passes << " | SURE "
-            << positionRisk / (ael * ael) << " AEL² | true along N " << fixed3(along) << " AEL | true " << fixed3(s.rms) << " / " << fixed3(s.angle) << "\n";
+            << positionRisk / (ael * ael) << " AEL² | true along N " << fixed3(along) << " AEL | true " << fixed3(s.rms) << " / " << fixed3(s.angle) << " | turn "
+            << fixed3(meanNormalTurn(c.noisy, x)) << "\n";
     };
   }
   const auto t0 = std::chrono::steady_clock::now();
@@ -578,7 +579,7 @@ int usage(const char* error) {
          "  --impulse-spectrum-min-samples (impulseSpectrumMinSamples), --planar-level-share (planarLevelShare),\n"
          "  --planar-keep (planarKeep), --light-start (lightStart), --light-start-turn (lightStartTurn)\n"
          "                     the default denoiser's options of those names (what-ifs)\n"
-         "  --trace            every candidate's risk estimates against its true errors, and how many cases a perfect\n"
+         "  --trace            every candidate's risk estimates against its true errors and its normals' mean turn, and how many cases a perfect\n"
          "                     choice among the candidates would win (slow)\n"
          "  --true-noise       the denoiser is given the true noise level (an oracle experiment)\n"
          "  --cache DIR        the oracles' score cache (default build/eval-cache); --no-cache to recompute\n"
