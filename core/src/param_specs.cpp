@@ -2,10 +2,10 @@
 // the options structs' initialisers; ranges are what the core accepts, with upper bounds on counts
 // and lengths that keep a typo from running for hours.
 #include <limits>
-#include <sstream>
 #include <string>
 
 #include "geoshift/bilateral_normal.hpp"
+#include "geoshift/check.hpp"
 #include "geoshift/denoise.hpp"
 #include "geoshift/error.hpp"
 #include "geoshift/filter_request.hpp"
@@ -22,13 +22,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMaxSafeInteger = 9007199254740991.0;  // 2^53 - 1: seeds must survive a JS number
-
-// A default as the docs print it (1.5, not 1.500000).
-std::string shortNumber(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // Builds one ParamSpec line by line, so that the tables below read as tables.
 class P {
@@ -220,13 +213,13 @@ OpParamSpecs denoiseSpecs() {
               P("presmoothing", T::Integer, "candidate Taubin step counts before the passes; SURE picks one")
                   .list().byDefault(numbers(d.presmoothing)).range(0, 10000).appliesWhen(ours),
               P("taubinOnly", T::Integer,
-                "Taubin step counts (mu " + shortNumber(d.candidateTaubin.mu) +
+                "Taubin step counts (mu " + formatNumber(d.candidateTaubin.mu) +
                     ") scored as candidates of their own, without passes; 0: none")
                   .list().byDefault(numbers(d.taubinOnlySteps)).range(0, 10000).appliesWhen(ours),
               P("lightStart", T::Integer,
                 "Taubin steps of a light start, raced beside the others where the Taubin-only candidates estimate "
                 "least at their fewest steps (thin parts); its winner stands only if its normals turn at most " +
-                    shortNumber(d.lightStartTurn) + " times as much as the rest's; 0: none")
+                    formatNumber(d.lightStartTurn) + " times as much as the rest's; 0: none")
                   .byDefault(static_cast<double>(d.lightStart)).range(0, 10000).appliesWhen(ours),
               P("impulse", T::Enum,
                 "outliers of impulsive noise: auto: corrected when the result's displacements or the input's highest "
